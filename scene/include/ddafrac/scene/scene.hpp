@@ -1,0 +1,91 @@
+#pragma once
+// A scene: everything one run needs, parsed from one TOML file and validated. SI units
+// throughout; angles in radians here (the file gives degrees).
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ddafrac/meshes/geometry.hpp"
+
+namespace ddafrac::scene {
+
+using Vec2 = std::array<double, 2>;
+
+struct Material {
+  std::string name;
+  double density = 0.0;  // kg/m^3
+  double young = 0.0;    // Pa
+  double poisson = 0.0;  // -, in [0, 0.5)
+};
+
+/// Strength and stiffness of a family of joints (virtual joints of a body, or real joints).
+struct JointSet {
+  std::string name;
+  double friction_angle = 0.0;    // rad
+  double cohesion = 0.0;          // Pa
+  double tensile_strength = 0.0;  // Pa
+  double normal_stiffness = 0.0;  // N/m per unit thickness (penalty kn)
+  double shear_stiffness = 0.0;   // N/m per unit thickness (penalty ks)
+};
+
+enum class Role { Disc, Platen, Plate };
+enum class Motion { Free, Fixed, Prescribed };
+
+struct Body {
+  std::string name;      // a body (physical surface group) of the geometry
+  Role role = Role::Disc;
+  Motion motion = Motion::Free;
+  std::size_t material = 0;                   // index into Scene::materials
+  std::optional<std::size_t> virtual_joints;  // index into Scene::joint_sets; none = not meshed into breakable blocks
+  Vec2 initial_velocity{0.0, 0.0};            // m/s
+  Vec2 prescribed_velocity{0.0, 0.0};         // m/s, for Motion::Prescribed
+};
+
+enum class PlaneModel { Stress, Strain };
+enum class Mode { Dynamic, Static };
+
+struct Analysis {
+  Mode mode = Mode::Dynamic;
+  PlaneModel plane = PlaneModel::Stress;
+  double dt_max = 0.0;                  // s
+  double max_displacement_ratio = 0.0;  // allowed step displacement / half model height
+  double penalty = 0.0;                 // default contact stiffness kn, N/m
+  double end_time = 0.0;                // s
+  double output_interval = 0.0;         // s between snapshots / gauge samples
+  Vec2 gravity{0.0, 0.0};               // m/s^2
+  int open_close_max = 6;               // open-close iterations before dt is cut
+};
+
+struct Gauge {
+  std::string name;
+  Vec2 position{0.0, 0.0};  // m
+};
+
+struct Output {
+  bool vtk = true;
+  bool figures = true;
+  double crack_interval = 150e-6;  // s, bin width of incremental crack counts
+  std::vector<double> figure_times;  // s, crack-pattern pictures
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::filesystem::path source;  // the TOML file it came from ("" if built in)
+  std::vector<Material> materials;
+  std::vector<JointSet> joint_sets;
+  meshes::Geometry geometry;
+  meshes::MeshControl mesh;
+  std::vector<Body> bodies;
+  std::size_t real_joints = 0;  // joint set of contacts between bodies, slit faces and broken joints
+  Analysis analysis;
+  std::vector<Gauge> gauges;
+  Output output;
+
+  const Body* find_body(const std::string& name) const;
+};
+
+}  // namespace ddafrac::scene
