@@ -3,6 +3,7 @@
 // angles in radians. The disc centre is at the origin in every generator.
 
 #include <filesystem>
+#include <optional>
 #include <variant>
 
 namespace ddafrac::meshes {
@@ -15,23 +16,25 @@ struct PlainDisc {
   double load_half_angle = 0.0;
 };
 
-/// Disc with flats of central angle flat_angle cut at top and bottom, between two rectangular
-/// platens of the given thickness and width, touching the flats (bodies "disc", "top_platen",
-/// "bottom_platen"; boundary groups "flat_top", "flat_bottom", "rim").
-struct FlattenedDisc {
-  double diameter = 0.1;
-  double flat_angle = 0.17453292519943295;  // 10 degrees
-  double platen_thickness = 0.02;
-  double platen_width = 0.1;
-  bool with_platens = true;  // the FEM model loads the flats directly and needs no platens
-};
-
 /// A straight slot of given length and width through the disc centre, at an inclination
 /// measured counter-clockwise from the x axis (boundary group "slit").
 struct Slit {
   double length = 0.025;
   double width = 0.0004;
   double inclination = 0.0;
+};
+
+/// Disc with flats of central angle flat_angle cut at top and bottom, between two rectangular
+/// platens of the given thickness and width, touching the flats (bodies "disc", "top_platen",
+/// "bottom_platen"; boundary groups "flat_top", "flat_bottom", "rim"). With a slit, this is
+/// the pre-cracked Brazilian disc of the study, loaded through its platens.
+struct FlattenedDisc {
+  double diameter = 0.1;
+  double flat_angle = 0.17453292519943295;  // 10 degrees
+  double platen_thickness = 0.02;
+  double platen_width = 0.1;
+  bool with_platens = true;  // the FEM model loads the flats directly and needs no platens
+  std::optional<Slit> slit;
 };
 
 /// Pre-cracked Brazilian disc: a disc with a central slit.
