@@ -131,6 +131,17 @@ void fill(QualityReport* report, const Mesh& mesh, double size, int iterations) 
   report->iterations = iterations;
 }
 
+/// A finite-element space of quadrilaterals cannot take a leftover triangle.
+void require_all_quadrilaterals(const Mesh& mesh, double element_size) {
+  constexpr std::size_t kQuadCorners = 4;
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+    if (mesh.cell_size(c) != kQuadCorners) {
+      throw MeshError(fmt::format("gmsh recombination left triangles at element size {} m; try "
+                                  "another size or triangles", element_size));
+    }
+  }
+}
+
 Mesh read_user_file(const MshFile& file, QualityReport* report) {
   Mesh mesh = read_msh(file.path);
   fill(report, mesh, 0.0, 0);
@@ -182,6 +193,7 @@ Mesh generate_fem_mesh(const Geometry& geometry, double element_size, FemCells c
     }
     mesh_disc(model, sizing, element_size);
     Mesh mesh = detail::mesh_from_gmsh_model("generated FEM mesh");
+    if (cells == FemCells::Quadrilaterals) require_all_quadrilaterals(mesh, element_size);
     fill(report, mesh, element_size, 1);
     return mesh;
   });
