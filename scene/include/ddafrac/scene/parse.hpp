@@ -31,14 +31,20 @@ class SceneError : public std::runtime_error {
   std::vector<Problem> problems_;
 };
 
-/// Parses TOML text (file_name is used in messages and to resolve relative .msh paths).
+/// Parses TOML text (file_name is used in messages and to resolve relative paths: `base`, the
+/// .msh file). A scene may name a `base` scene file whose tables it extends and overrides.
 Scene parse_scene(const std::string& toml_text, const std::filesystem::path& file_name);
 
 /// Reads and parses a scene file.
 Scene load_scene(const std::filesystem::path& path);
 
-/// Replaces values of a parsed TOML document before validation, as in `--set analysis.dt_max=1e-8`.
-/// Accepts "dotted.key=value"; the value is parsed as a TOML value.
+/// Checks a scene against a mesh read from a user's .msh file: every body of the scene is a
+/// body of the mesh and the other way round. Throws SceneError.
+void check_bodies_against_mesh(const Scene& scene, const std::vector<std::string>& mesh_bodies);
+
+/// Reads a scene file with values replaced before validation, as in `--set analysis.dt_max=1e-8`.
+/// Each override is "dotted.key=value"; the value is read as a TOML value (a bare word that is
+/// not valid TOML is taken as a string).
 Scene load_scene(const std::filesystem::path& path, const std::vector<std::string>& overrides);
 
 }  // namespace ddafrac::scene

@@ -46,6 +46,7 @@ struct Body {
 
 enum class PlaneModel { Stress, Strain };
 enum class Mode { Dynamic, Static };
+enum class Solver { Pcg, Direct };  // block-Jacobi PCG, or a sparse direct factorisation
 
 struct Analysis {
   Mode mode = Mode::Dynamic;
@@ -57,6 +58,7 @@ struct Analysis {
   double output_interval = 0.0;         // s between snapshots / gauge samples
   Vec2 gravity{0.0, 0.0};               // m/s^2
   int open_close_max = 6;               // open-close iterations before dt is cut
+  Solver solver = Solver::Pcg;
 };
 
 struct Gauge {

@@ -1,0 +1,106 @@
+#pragma once
+// A validating reader over toml++ tables: every read states the expected type, range and unit,
+// every problem is recorded with file, line and dotted key, and keys nobody asked for are
+// reported as unknown with the closest valid key suggested. Internal to the scene library.
+
+#include <toml++/toml.h>
+
+#include <array>
+#include <initializer_list>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ddafrac/scene/parse.hpp"
+
+namespace ddafrac::scene::detail {
+
+/// Collects problems; knows which file to blame when a node has no source of its own.
+class Diagnostics {
+ public:
+  explicit Diagnostics(std::string fallback_file) : fallback_file_(std::move(fallback_file)) {}
+
+  void report(const toml::source_region& where, std::string key, std::string message);
+  bool empty() const { return problems_.empty(); }
+  std::vector<Problem> take() { return std::move(problems_); }
+
+ private:
+  std::string fallback_file_;
+  std::vector<Problem> problems_;
+};
+
+enum class Need { Required, Optional };
+
+/// An admissible interval for a number, with its unit for messages. An unset bound is infinite.
+struct NumberRule {
+  std::optional<double> min;
+  std::optional<double> max;
+  bool min_open = false;
+  bool max_open = false;
+  std::string unit;  // e.g. "s", "Pa", "degrees"; empty for dimensionless
+
+  bool admits(double v) const;
+  std::string describe() const;  // "a number > 0 (s)"
+
+  static NumberRule positive(std::string unit) { return {0.0, std::nullopt, true, false, std::move(unit)}; }
+  static NumberRule non_negative(std::string unit) { return {0.0, std::nullopt, false, false, std::move(unit)}; }
+  static NumberRule any(std::string unit) { return {std::nullopt, std::nullopt, false, false, std::move(unit)}; }
+  static NumberRule open(double lo, double hi, std::string unit = "") { return {lo, hi, true, true, std::move(unit)}; }
+  static NumberRule half_open(double lo, double hi, std::string unit = "") { return {lo, hi, false, true, std::move(unit)}; }
+};
+
+/// The closest candidate within a small edit distance, or "" if none is close.
+std::string closest_match(std::string_view word, const std::vector<std::string>& candidates);
+
+class TableReader {
+ public:
+  /// `table` may be null (a missing optional table): every read then yields nothing.
+  TableReader(const toml::table* table, std::string path, const toml::source_region& where,
+              Diagnostics& diagnostics);
+
+  std::optional<double> number(std::string_view key, const NumberRule& rule, Need need);
+  std::optional<long long> integer(std::string_view key, long long min, long long max, Need need);
+  std::optional<bool> boolean(std::string_view key, Need need);
+  std::optional<std::string> text(std::string_view key, Need need);
+  /// A string that must be one of `options`.
+  std::optional<std::string> choice(std::string_view key, const std::vector<std::string>& options,
+                                    Need need);
+  /// A reference by name to an entry of another table (e.g. a material).
+  std::optional<std::size_t> reference(std::string_view key, const std::vector<std::string>& names,
+                                       std::string_view what, Need need);
+  std::optional<std::array<double, 2>> vec2(std::string_view key, const std::string& unit, Need need);
+  std::optional<std::vector<double>> numbers(std::string_view key, const NumberRule& rule, Need need);
+
+  /// A sub-table; a missing optional one gives a reader over nothing.
+  TableReader table(std::string_view key, Need need);
+  /// The keys of a table of named entries ([materials.rock], [materials.steel], ...), in file order.
+  std::vector<std::string> entry_names() const;
+  /// An array of tables ([[gauges]]).
+  std::vector<TableReader> table_array(std::string_view key, Need need);
+
+  bool present() const { return table_ != nullptr; }
+  bool has(std::string_view key) const;
+  const toml::source_region& where() const { return where_; }
+  const toml::source_region& where(std::string_view key) const;
+  std::string path_of(std::string_view key) const;
+  void problem(std::string_view key, std::string message);
+
+  /// Reports every key of this table that no read asked for.
+  void reject_unknown_keys();
+
+ private:
+  const toml::node* find(std::string_view key, Need need, const std::string& expected);
+  const toml::value<std::string>* find_string(std::string_view key, Need need, const std::string& expected);
+  void wrong_type(std::string_view key, const toml::node& node, const std::string& expected);
+
+  const toml::table* table_;
+  std::string path_;
+  toml::source_region where_;
+  Diagnostics* diagnostics_;
+  std::set<std::string, std::less<>> asked_;
+  bool silent_ = false;  // the table itself is missing and was reported: say nothing more
+};
+
+}  // namespace ddafrac::scene::detail
