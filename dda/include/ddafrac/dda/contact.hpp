@@ -1,0 +1,99 @@
+#pragma once
+// Contacts between blocks: records carried from step to step, O(N) detection (uniform grid broad
+// phase + vertex-edge / vertex-vertex narrow phase with angle rules), and the pair topology the
+// assembly needs (one off-diagonal 6x6 block per contacting block pair).
+
+#include <cstdint>
+#include <vector>
+
+#include "ddafrac/dda/block_system.hpp"
+#include "ddafrac/dda/types.hpp"
+
+namespace ddafrac::dda {
+
+enum class ContactState : std::uint8_t { Open = 0, Sliding = 1, Locked = 2 };
+const char* to_string(ContactState s);
+
+/// One vertex-edge contact: the vertex of `vblock` against the edge edge0->edge1 (CCW) of
+/// `eblock`. Vertex-vertex contacts are reduced to one such reference line by the angle rules.
+struct Contact {
+  // Identity.
+  Index vblock = 0, eblock = 0;  // block owning the vertex / the edge
+  Index vertex = 0;              // global vertex index (BlockSystem::vx)
+  Index edge0 = 0, edge1 = 0;    // global vertex indices of the reference edge
+  Index joint = -1;              // virtual joint (BlockSystem::joints); bonded while intact
+  Index joint_set = -1;          // Scene::joint_sets index of its properties (-1: defaults)
+  bool vertex_vertex = false;
+  // Carried from step to step.
+  ContactState state = ContactState::Open;
+  double ref_t = 0.0;         // locked reference point on the edge, as edge parameter 0..1
+  double normal_force = 0.0;  // N/m, compression positive (tension for bonded joints)
+  double shear_force = 0.0;   // N/m
+  double slip = 0.0;          // accumulated sliding displacement, m
+  double slide_sign = 0.0;    // direction of sliding along the edge (+1/-1)
+  // Properties.
+  double kn = 0.0, ks = 0.0;  // penalty springs, N/m
+  double tan_phi = 0.0;
+  // Per step (geometry at step start): gap, shear and their linearisations.
+  double d0 = 0.0;        // normal gap, m, positive = apart
+  double s0 = 0.0;        // shear displacement from the reference point along the edge, m
+  double edge_length = 0.0;
+  Vec6 e = Vec6::Zero(), g = Vec6::Zero();    // d ≈ d0 + e·D_v + g·D_e
+  Vec6 es = Vec6::Zero(), gs = Vec6::Zero();  // s ≈ s0 + es·D_v + gs·D_e
+  // Per open-close iteration.
+  ContactState trial = ContactState::Open;  // state assumed by the current assembly
+  double fn_iter = 0.0;                     // normal force of the latest solve, N/m
+  double d_iter = 0.0, s_iter = 0.0;        // gap and shear of the latest solve, m
+
+  bool bonded(const std::vector<Joint>& joints) const {
+    return joint >= 0 && !joints[static_cast<std::size_t>(joint)].broken;
+  }
+  /// Blocks of the pair in increasing order.
+  Index pair_low() const { return vblock < eblock ? vblock : eblock; }
+  Index pair_high() const { return vblock < eblock ? eblock : vblock; }
+};
+
+/// A block pair with contacts: contacts[first, last) of the sorted list.
+struct ContactPair {
+  Index a = 0, b = 0;  // a < b
+  Index first = 0, last = 0;
+};
+
+/// Contacts sorted by (pair, vertex), their pairs, and per-block lists (both built serially from
+/// the sorted list, so every parallel gather below sums in a fixed order).
+struct ContactSet {
+  std::vector<Contact> contacts;
+  std::vector<ContactPair> pairs;
+  std::vector<Index> block_contact_offsets;  // CSR: contacts touching each block, ascending
+  std::vector<Index> block_contacts;
+  std::vector<Index> block_pair_offsets;     // CSR: pairs touching each block, by other block
+  std::vector<Index> block_pairs;
+};
+
+struct DetectionParams {
+  double search_distance = 0.0;     // m: vertices farther than this from an edge are ignored
+  double angle_tolerance = 0.0523;  // rad (3°): a vertex wedge may dip this far behind an edge
+  double vv_max_gap_angle = 0.2;    // rad: vertex-vertex contact only if the wedges are this close
+};
+
+/// Reusable scratch space of the broad phase (avoids reallocation every step).
+struct DetectionWorkspace {
+  std::vector<double> xmin, xmax, ymin, ymax;
+  std::vector<Index> cell_offsets, cell_blocks;
+  std::vector<std::vector<Index>> candidates;  // per block: partner blocks > it
+  std::vector<std::vector<Contact>> found;     // per block: contacts of its pairs
+};
+
+/// Finds all contacts (identity and geometry only; state is transferred afterwards).
+/// Deterministic: the output is sorted by (low block, high block, vertex) whatever the threads.
+std::vector<Contact> detect_contacts(const BlockSystem& blocks, const DetectionParams& params,
+                                     DetectionWorkspace& work);
+
+/// Carries state (state, reference point, forces, slip) from the previous list to contacts of
+/// the same vertex and block pair; new contacts start closed (locked) if they touch, else open.
+void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Contact>& current);
+
+/// Fills pairs and per-block lists of a sorted contact list.
+void build_contact_topology(ContactSet& set, std::size_t block_count);
+
+}  // namespace ddafrac::dda

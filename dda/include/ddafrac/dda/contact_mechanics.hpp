@@ -1,0 +1,42 @@
+#pragma once
+// Contact mechanics: linearised gap and shear (DESIGN.md §4), penalty springs, Mohr-Coulomb
+// sliding, and the open-close judgement.
+
+#include <vector>
+
+#include "ddafrac/dda/block_system.hpp"
+#include "ddafrac/dda/contact.hpp"
+#include "ddafrac/scene/scene.hpp"
+
+namespace ddafrac::dda {
+
+/// Stiffness and friction of every contact from its joint set (bonded joints: their virtual
+/// joint set; others: the scene's real joints). kn falls back to the scene penalty, ks to
+/// shear_ratio·kn when the joint set gives none.
+void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem& blocks,
+                               const scene::Scene& scene, double shear_ratio);
+
+/// Normal gap, shear displacement from the locked reference point, and their gradients with
+/// respect to the unknowns of both blocks, from the current geometry. Contacts that are not
+/// locked move their reference point to the current projection (s0 = 0).
+void linearise_contact(Contact& c, const BlockSystem& blocks);
+
+/// Exact (nonlinear) normal gap of a vertex against an edge, positive when the vertex is
+/// outside the CCW block: d = [(x3-x2)(y2-y1) - (y3-y2)(x2-x1)] / l.
+double normal_gap(double x1, double y1, double x2, double y2, double x3, double y3);
+
+/// Spring and load coefficients of a contact in its trial state for the assembly:
+/// K += kn_eff·[e;g][e;g]^T + ks_eff·[es;gs][es;gs]^T,  F += fn_rhs·[e;g] + fs_rhs·[es;gs].
+struct ContactCoefficients {
+  double kn_eff = 0.0, ks_eff = 0.0, fn_rhs = 0.0, fs_rhs = 0.0;
+};
+ContactCoefficients contact_coefficients(const Contact& c);
+
+/// Judges one contact from the solution of its two blocks; returns true if its state changed.
+/// Bonded contacts stay locked (they carry tension; breaking is the fracture check's job).
+bool judge_contact(Contact& c, const Vec6& d_vertex_block, const Vec6& d_edge_block, bool bonded);
+
+/// After the step is accepted: forces, slip and reference point carried to the next step.
+void commit_contact(Contact& c);
+
+}  // namespace ddafrac::dda

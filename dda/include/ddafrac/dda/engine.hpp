@@ -1,0 +1,139 @@
+#pragma once
+// The DDA time stepper: composes block terms, contacts, the open-close iteration, the linear
+// solver and the time-step control into one accepted step at a time. No global state: all of it
+// lives in an Engine object; several engines can run side by side.
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "ddafrac/dda/block_system.hpp"
+#include "ddafrac/dda/contact.hpp"
+#include "ddafrac/dda/linear_system.hpp"
+#include "ddafrac/meshes/mesh.hpp"
+#include "ddafrac/scene/scene.hpp"
+
+namespace ddafrac::dda {
+
+struct EngineOptions {
+  SolverSettings solver;
+  bool bond_virtual_joints = true;        // same-body shared edges start as bonded joints
+  double shear_to_normal_stiffness = 0.4; // ks = ratio·kn when a joint set gives no ks
+  double anchor_penalty_factor = 100.0;   // fixed/prescribed point springs = factor·penalty (N/m)
+  double search_distance_factor = 2.5;    // contact search distance / allowed step displacement
+  double allowed_displacement = 0.0;      // m; 0 = max_displacement_ratio · half model height
+  double dt_cut_factor = 0.3;             // dt ×= this on a failed step
+  double dt_grow_factor = 1.2;            // dt ×= this after an easy step, up to dt_max
+  int easy_open_close = 2;                // "easy" = converged within this many iterations
+  double dt_floor_fraction = 1e-6;        // dt below dt_max·this = numerical trouble
+  double mass_damping = 0.0;              // η of C = ηM, 1/s (off by default)
+  DetectionParams detection;              // search_distance is filled in by the engine
+  std::vector<PointLoad> point_loads;     // extra loads (tests, benchmarks)
+  std::vector<Anchor> anchors;            // extra fixed/prescribed points
+};
+
+/// Wall time per phase, s.
+struct PhaseTimes {
+  double detection = 0.0, assembly = 0.0, solve = 0.0, judgement = 0.0, update = 0.0, output = 0.0;
+  double total() const { return detection + assembly + solve + judgement + update + output; }
+};
+
+struct Energies {
+  double kinetic = 0.0;  // J per unit thickness
+  double strain = 0.0;   // elastic energy of the blocks
+  double contact = 0.0;  // energy stored in contact springs
+};
+
+struct StepReport {
+  long step = 0;            // number of this accepted step (1-based)
+  double time = 0.0;        // s, at the end of the step
+  double dt = 0.0;          // s, accepted
+  int open_close = 0;       // iterations of the accepted attempt
+  int cg_iterations = 0;    // over all solves of the step, retries included
+  int cuts = 0;             // dt cuts before acceptance
+  double max_displacement = 0.0;  // m, largest vertex displacement of the step
+  double max_penetration = 0.0;   // m, deepest closed contact after the step
+  std::size_t contacts = 0, closed = 0, sliding = 0;
+  Energies energy;
+};
+
+struct Statistics {
+  long steps = 0;
+  double dt_min = 0.0, dt_max = 0.0, dt_sum = 0.0;
+  long cuts_displacement = 0, cuts_open_close = 0, cuts_solver = 0;
+  long open_close_total = 0;
+  int open_close_max = 0;
+  long solves = 0, cg_total = 0;
+  int cg_max = 0;
+  double max_penetration = 0.0;
+  PhaseTimes times;
+};
+
+/// Which terms the time loop composed (summary.json lists them).
+struct ActiveTerms {
+  bool dynamic = true, elasticity = true, initial_stress = true, gravity = false, point_loads = false,
+       anchors = false, contacts = false, friction = false, bonded_joints = false, damping = false;
+  std::vector<std::string> names() const;
+};
+
+/// The run ended on numerical trouble (NaN, dt below its floor, open-close never converging).
+class NumericalTrouble : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Engine {
+ public:
+  Engine(scene::Scene scene, const meshes::Mesh& mesh, EngineOptions options = {});
+
+  /// One accepted step no longer than max_dt (the driver uses it to land on output times).
+  /// Throws NumericalTrouble naming the step, time and worst block or contact.
+  StepReport step(double max_dt = 1e300);
+
+  double time() const { return time_; }
+  double dt() const { return dt_; }
+  double allowed_displacement() const { return allowed_; }
+  const scene::Scene& scene() const { return scene_; }
+  const BlockSystem& blocks() const { return blocks_; }
+  BlockSystem& blocks() { return blocks_; }  // the fracture check (next issue) breaks joints here
+  const ContactSet& contacts() const { return set_; }
+  const Statistics& statistics() const { return stats_; }
+  Statistics& statistics() { return stats_; }
+  const ActiveTerms& active_terms() const { return active_; }
+  const EngineOptions& options() const { return options_; }
+  Energies energies() const;
+  /// Block displacement of the last accepted step (D per block).
+  const BlockVector& last_displacement() const { return d_; }
+
+ private:
+  void detect();
+  void block_terms(double dt);
+  void assemble();
+  bool judge(int& changed_first);
+  void reset_trials();
+  void accept(double dt);
+  [[noreturn]] void trouble(const std::string& what) const;
+  std::string describe_block(Index b) const;
+  std::string describe_contact(Index c) const;
+
+  scene::Scene scene_;
+  EngineOptions options_;
+  BlockSystem blocks_;
+  ContactSet set_;
+  DetectionWorkspace detection_;
+  BlockMatrix matrix_;
+  BlockVector base_rhs_, rhs_, d_;
+  std::vector<Mat6> base_diag_;
+  std::vector<double> saved_slide_sign_;
+  SolverWorkspace solver_work_;
+  Statistics stats_;
+  ActiveTerms active_;
+  double time_ = 0.0;
+  double dt_ = 0.0;
+  double dt_prev_ = 0.0;
+  double allowed_ = 0.0;
+  double anchor_penalty_ = 0.0;
+  long step_ = 0;
+};
+
+}  // namespace ddafrac::dda

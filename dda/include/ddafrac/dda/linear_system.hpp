@@ -1,0 +1,53 @@
+#pragma once
+// Symmetric block-sparse system with 6x6 blocks: one diagonal block per DDA block and one
+// off-diagonal block per contacting pair (K_ab for a < b; K_ba = K_ab^T is implied).
+// Solvers: PCG with 6x6 block-Jacobi preconditioner (warm-started), or Eigen's SimplicialLDLT.
+// Every reduction runs over fixed-size chunks summed in order: results do not depend on the
+// number of OpenMP threads.
+
+#include <vector>
+
+#include "ddafrac/dda/contact.hpp"
+#include "ddafrac/dda/types.hpp"
+
+namespace ddafrac::dda {
+
+struct BlockMatrix {
+  std::vector<Mat6> diag;  // per block
+  std::vector<Mat6> off;   // per ContactSet::pairs entry, K_ab with a < b
+};
+
+using BlockVector = std::vector<Vec6>;
+
+/// y = K x, parallel over block rows (each row gathers its pairs in the fixed list order).
+void multiply(const BlockMatrix& k, const ContactSet& topology, const BlockVector& x, BlockVector& y);
+
+/// Deterministic dot product (chunked, chunk sums added in order).
+double dot(const BlockVector& a, const BlockVector& b);
+
+enum class SolverKind { Pcg, Direct };
+const char* to_string(SolverKind s);
+
+struct SolveReport {
+  int iterations = 0;            // PCG iterations (0 for the direct solver)
+  double relative_residual = 0;  // |b - Kx| / |b|
+  bool converged = false;
+};
+
+struct SolverSettings {
+  SolverKind kind = SolverKind::Pcg;
+  double tolerance = 1e-10;  // relative residual of PCG
+  int max_iterations = 5000;
+};
+
+/// Scratch vectors of PCG, kept between solves.
+struct SolverWorkspace {
+  BlockVector r, z, p, q;
+  std::vector<Mat6> preconditioner;  // inverted diagonal blocks
+};
+
+/// Solves K x = b; x holds the warm start on entry.
+SolveReport solve(const BlockMatrix& k, const ContactSet& topology, const BlockVector& b, BlockVector& x,
+                  const SolverSettings& settings, SolverWorkspace& work);
+
+}  // namespace ddafrac::dda

@@ -1,0 +1,131 @@
+#include "ddafrac/dda/contact_mechanics.hpp"
+
+#include <cmath>
+
+#include "ddafrac/dda/geometry.hpp"
+
+namespace ddafrac::dda {
+
+void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem& blocks,
+                               const scene::Scene& scene, double shear_ratio) {
+  const auto n = static_cast<std::int64_t>(contacts.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < n; ++k) {
+    Contact& c = contacts[k];
+    Index set = -1;
+    if (c.bonded(blocks.joints))
+      set = blocks.joints[static_cast<std::size_t>(c.joint)].joint_set;
+    else if (scene.real_joints < scene.joint_sets.size())
+      set = static_cast<Index>(scene.real_joints);
+    c.joint_set = set;
+    double kn = scene.analysis.penalty, ks = 0.0, phi = 0.0;
+    if (set >= 0) {
+      const scene::JointSet& js = scene.joint_sets[static_cast<std::size_t>(set)];
+      if (js.normal_stiffness > 0.0) kn = js.normal_stiffness;
+      ks = js.shear_stiffness;
+      phi = js.friction_angle;
+    }
+    c.kn = kn;
+    c.ks = ks > 0.0 ? ks : shear_ratio * kn;
+    c.tan_phi = std::tan(phi);
+  }
+}
+
+double normal_gap(double x1, double y1, double x2, double y2, double x3, double y3) {
+  const double l = std::hypot(x3 - x2, y3 - y2);
+  return ((x3 - x2) * (y2 - y1) - (y3 - y2) * (x2 - x1)) / l;
+}
+
+void linearise_contact(Contact& c, const BlockSystem& s) {
+  const double x1 = s.vx[c.vertex], y1 = s.vy[c.vertex];
+  const double x2 = s.vx[c.edge0], y2 = s.vy[c.edge0];
+  const double x3 = s.vx[c.edge1], y3 = s.vy[c.edge1];
+  const double dx = x3 - x2, dy = y3 - y2;
+  const double l2 = dx * dx + dy * dy;
+  const double l = std::sqrt(l2);
+  const double ux = dx / l, uy = dy / l;
+  c.edge_length = l;
+  c.d0 = (dx * (y2 - y1) - dy * (x2 - x1)) / l;
+  const double t_now = ((x1 - x2) * dx + (y1 - y2) * dy) / l2;
+  if (c.state != ContactState::Locked) c.ref_t = t_now;
+  c.s0 = (t_now - c.ref_t) * l;
+  const PolygonIntegrals& gi = s.geometry[c.vblock];
+  const PolygonIntegrals& gj = s.geometry[c.eblock];
+  const Mat26 ti = displacement_matrix(gi.cx, gi.cy, x1, y1);
+  const Mat26 t2 = displacement_matrix(gj.cx, gj.cy, x2, y2);
+  const Mat26 t3 = displacement_matrix(gj.cx, gj.cy, x3, y3);
+  c.e = ((y3 - y2) * ti.row(0) + (x2 - x3) * ti.row(1)).transpose() / l;
+  c.g = ((y1 - y3) * t2.row(0) + (x3 - x1) * t2.row(1) + (y2 - y1) * t3.row(0) + (x1 - x2) * t3.row(1))
+            .transpose() / l;
+  c.es = (ux * ti.row(0) + uy * ti.row(1)).transpose();
+  const double w2 = 1.0 - c.ref_t, w3 = c.ref_t;
+  c.gs = -(ux * (w2 * t2.row(0) + w3 * t3.row(0)) + uy * (w2 * t2.row(1) + w3 * t3.row(1))).transpose();
+  c.trial = c.state;
+  c.fn_iter = c.normal_force;
+  c.d_iter = c.d0;
+  c.s_iter = c.s0;
+}
+
+ContactCoefficients contact_coefficients(const Contact& c) {
+  ContactCoefficients k;
+  switch (c.trial) {
+    case ContactState::Open: break;
+    case ContactState::Locked:
+      k.kn_eff = c.kn;
+      k.ks_eff = c.ks;
+      k.fn_rhs = -c.kn * c.d0;
+      k.fs_rhs = -c.ks * c.s0;
+      break;
+    case ContactState::Sliding:
+      k.kn_eff = c.kn;
+      k.fn_rhs = -c.kn * c.d0;
+      k.fs_rhs = -c.slide_sign * c.tan_phi * std::max(c.fn_iter, 0.0);
+      break;
+  }
+  return k;
+}
+
+bool judge_contact(Contact& c, const Vec6& dv, const Vec6& de, bool bonded) {
+  const double d = c.d0 + c.e.dot(dv) + c.g.dot(de);
+  const double s = c.s0 + c.es.dot(dv) + c.gs.dot(de);
+  const double ds = s - c.s0;
+  ContactState next;
+  double fn = 0.0;
+  if (bonded) {
+    next = ContactState::Locked;
+    fn = -c.kn * d;
+  } else if (d > 0.0) {
+    next = ContactState::Open;
+  } else {
+    fn = -c.kn * d;
+    if (c.trial == ContactState::Sliding) {
+      next = ds * c.slide_sign < 0.0 ? ContactState::Locked : ContactState::Sliding;
+    } else if (std::abs(c.ks * s) > c.tan_phi * fn) {
+      next = ContactState::Sliding;
+      c.slide_sign = s >= 0.0 ? 1.0 : -1.0;
+    } else {
+      next = ContactState::Locked;
+    }
+  }
+  const bool changed = next != c.trial;
+  c.trial = next;
+  c.fn_iter = fn;
+  c.d_iter = d;
+  c.s_iter = s;
+  return changed;
+}
+
+void commit_contact(Contact& c) {
+  c.state = c.trial;
+  c.normal_force = c.fn_iter;
+  switch (c.state) {
+    case ContactState::Open: c.shear_force = 0.0; break;
+    case ContactState::Locked: c.shear_force = c.ks * c.s_iter; break;
+    case ContactState::Sliding:
+      c.shear_force = c.slide_sign * c.tan_phi * c.fn_iter;
+      c.slip += std::abs(c.s_iter - c.s0);
+      break;
+  }
+}
+
+}  // namespace ddafrac::dda

@@ -1,0 +1,429 @@
+#include "ddafrac/dda/engine.hpp"
+
+#include <fmt/core.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "ddafrac/dda/contact_mechanics.hpp"
+#include "ddafrac/dda/geometry.hpp"
+
+namespace ddafrac::dda {
+
+namespace {
+/// Blocks per chunk of the deterministic energy sums.
+constexpr std::int64_t kSumChunk = 256;
+
+template <class F>
+double chunked_sum(std::int64_t n, F&& term) {
+  const std::int64_t chunks = (n + kSumChunk - 1) / kSumChunk;
+  std::vector<double> part(static_cast<std::size_t>(chunks), 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    double s = 0.0;
+    const std::int64_t end = std::min(n, (c + 1) * kSumChunk);
+    for (std::int64_t i = c * kSumChunk; i < end; ++i) s += term(i);
+    part[c] = s;
+  }
+  double s = 0.0;
+  for (double v : part) s += v;
+  return s;
+}
+
+class Timer {
+ public:
+  explicit Timer(double& sink) : sink_(sink), start_(omp_get_wtime()) {}
+  ~Timer() { sink_ += omp_get_wtime() - start_; }
+  Timer(const Timer&) = delete;
+  Timer& operator=(const Timer&) = delete;
+
+ private:
+  double& sink_;
+  double start_;
+};
+}  // namespace
+
+std::vector<std::string> ActiveTerms::names() const {
+  std::vector<std::string> n;
+  n.push_back(dynamic ? "inertia (dynamic, velocities carried)" : "inertia (static, velocities reset)");
+  if (elasticity) n.push_back("elastic stiffness");
+  if (initial_stress) n.push_back("initial stress");
+  if (gravity) n.push_back("gravity");
+  if (point_loads) n.push_back("point loads");
+  if (anchors) n.push_back("fixed/prescribed points");
+  if (contacts) n.push_back("contact springs");
+  if (friction) n.push_back("friction (sliding contacts)");
+  if (bonded_joints) n.push_back("bonded virtual joints");
+  if (damping) n.push_back("mass damping");
+  return n;
+}
+
+Engine::Engine(scene::Scene scene, const meshes::Mesh& mesh, EngineOptions options)
+    : scene_(std::move(scene)), options_(std::move(options)) {
+  blocks_ = build_block_system(scene_, mesh, options_.bond_virtual_joints, options_.point_loads, options_.anchors);
+  const auto& an = scene_.analysis;
+  if (!(an.dt_max > 0.0)) throw std::invalid_argument("analysis.dt_max must be positive");
+  dt_ = an.dt_max;
+  dt_prev_ = dt_;
+  allowed_ = options_.allowed_displacement > 0.0 ? options_.allowed_displacement
+                                                 : an.max_displacement_ratio * blocks_.model_half_height;
+  if (!(allowed_ > 0.0)) throw std::invalid_argument("allowed step displacement must be positive (max_displacement_ratio)");
+  options_.detection.search_distance = options_.search_distance_factor * allowed_;
+  double pen = an.penalty;
+  if (!(pen > 0.0))
+    for (const auto& m : blocks_.materials) pen = std::max(pen, m.young);
+  anchor_penalty_ = options_.anchor_penalty_factor * pen;
+  const std::size_t n = blocks_.block_count();
+  d_.assign(n, Vec6::Zero());
+  active_.dynamic = an.mode == scene::Mode::Dynamic;
+  active_.gravity = an.gravity[0] != 0.0 || an.gravity[1] != 0.0;
+  active_.point_loads = !blocks_.loads.empty();
+  active_.anchors = !blocks_.anchors.empty();
+  active_.bonded_joints = !blocks_.joints.empty();
+  active_.damping = options_.mass_damping > 0.0;
+  if (!active_.dynamic) std::fill(blocks_.velocity.begin(), blocks_.velocity.end(), Vec6::Zero());
+}
+
+std::string Engine::describe_block(Index b) const {
+  if (b < 0) return "no block";
+  const auto& g = blocks_.geometry[b];
+  const Index body = blocks_.body[b];
+  return fmt::format("block {} (body '{}', centroid ({:.6g}, {:.6g}) m)", b,
+                     body >= 0 ? scene_.bodies[static_cast<std::size_t>(body)].name : std::string("?"), g.cx, g.cy);
+}
+
+std::string Engine::describe_contact(Index k) const {
+  if (k < 0) return "no contact";
+  const Contact& c = set_.contacts[k];
+  return fmt::format("contact {} (vertex of block {} at ({:.6g}, {:.6g}) m against an edge of block {}, gap {:.3g} m, {} -> {})", k,
+                     c.vblock, blocks_.vx[c.vertex], blocks_.vy[c.vertex], c.eblock, c.d_iter,
+                     to_string(c.state), to_string(c.trial));
+}
+
+void Engine::trouble(const std::string& what) const {
+  throw NumericalTrouble(fmt::format("numerical trouble at step {}, t = {:.9g} s, dt = {:.3g} s: {}", step_ + 1,
+                                     time_, dt_, what));
+}
+
+void Engine::detect() {
+  std::vector<Contact> found = detect_contacts(blocks_, options_.detection, detection_);
+  transfer_contact_state(set_.contacts, found);
+  assign_contact_properties(found, blocks_, scene_, options_.shear_to_normal_stiffness);
+  set_.contacts = std::move(found);
+  build_contact_topology(set_, blocks_.block_count());
+  const auto nc = static_cast<std::int64_t>(set_.contacts.size());
+  saved_slide_sign_.resize(set_.contacts.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < nc; ++k) {
+    Contact& c = set_.contacts[k];
+    if (c.bonded(blocks_.joints)) c.state = ContactState::Locked;
+    linearise_contact(c, blocks_);
+    saved_slide_sign_[k] = c.slide_sign;
+  }
+  if (nc > 0) active_.contacts = true;
+}
+
+void Engine::reset_trials() {
+  const auto nc = static_cast<std::int64_t>(set_.contacts.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < nc; ++k) {
+    Contact& c = set_.contacts[k];
+    c.trial = c.state;
+    c.fn_iter = c.normal_force;
+    c.slide_sign = saved_slide_sign_[k];
+  }
+}
+
+void Engine::block_terms(double dt) {
+  const auto n = static_cast<std::int64_t>(blocks_.block_count());
+  base_diag_.resize(static_cast<std::size_t>(n));
+  base_rhs_.resize(static_cast<std::size_t>(n));
+  const auto& an = scene_.analysis;
+  const double mass_k = 2.0 / (dt * dt) + 2.0 * options_.mass_damping / dt;  // Newmark γ=1, β=½ (+ηM)
+  const double mass_f = 2.0 / dt + options_.mass_damping;
+  const double t_end = time_ + dt;
+  const bool dynamic = active_.dynamic;
+  const bool gravity = active_.gravity;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const PolygonIntegrals& g = blocks_.geometry[i];
+    const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
+    const Mat6 m = mat.density * mass_integral(g);
+    Mat6 k = mass_k * m;
+    Vec6 f = Vec6::Zero();
+    if (dynamic) f.noalias() += mass_f * (m * blocks_.velocity[i]);
+    k.block<3, 3>(3, 3) += g.area * mat.elastic;
+    f.segment<3>(3) -= g.area * blocks_.stress[i];
+    if (gravity) {
+      f[kU] += mat.density * g.area * an.gravity[0];
+      f[kV] += mat.density * g.area * an.gravity[1];
+    }
+    for (Index l = blocks_.load_offsets[i]; l < blocks_.load_offsets[i + 1]; ++l) {
+      const PointLoad& p = blocks_.loads[static_cast<std::size_t>(l)];
+      const Mat26 t = displacement_matrix(g.cx, g.cy, p.x, p.y);
+      f.noalias() += t.transpose() * Eigen::Vector2d(p.fx, p.fy);
+    }
+    for (Index a = blocks_.anchor_offsets[i]; a < blocks_.anchor_offsets[i + 1]; ++a) {
+      const Anchor& p = blocks_.anchors[static_cast<std::size_t>(a)];
+      const Mat26 t = displacement_matrix(g.cx, g.cy, p.x, p.y);
+      k.noalias() += anchor_penalty_ * t.transpose() * t;
+      const Eigen::Vector2d target(p.x_start + p.vx * t_end - p.x, p.y_start + p.vy * t_end - p.y);
+      f.noalias() += anchor_penalty_ * t.transpose() * target;
+    }
+    base_diag_[i] = k;
+    base_rhs_[i] = f;
+  }
+}
+
+void Engine::assemble() {
+  const auto n = static_cast<std::int64_t>(blocks_.block_count());
+  const auto np = static_cast<std::int64_t>(set_.pairs.size());
+  const auto& cs = set_.contacts;
+  matrix_.diag.resize(static_cast<std::size_t>(n));
+  matrix_.off.resize(static_cast<std::size_t>(np));
+  rhs_.resize(static_cast<std::size_t>(n));
+  // Diagonal blocks and loads: gathered per block from its sorted contact list (no races).
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    Mat6 k = base_diag_[i];
+    Vec6 f = base_rhs_[i];
+    for (Index m = set_.block_contact_offsets[i]; m < set_.block_contact_offsets[i + 1]; ++m) {
+      const Contact& c = cs[set_.block_contacts[m]];
+      const ContactCoefficients q = contact_coefficients(c);
+      if (q.kn_eff == 0.0 && q.ks_eff == 0.0 && q.fs_rhs == 0.0) continue;
+      const Vec6& a = c.vblock == i ? c.e : c.g;
+      const Vec6& b = c.vblock == i ? c.es : c.gs;
+      if (q.kn_eff != 0.0) k.noalias() += q.kn_eff * a * a.transpose();
+      if (q.ks_eff != 0.0) k.noalias() += q.ks_eff * b * b.transpose();
+      f += q.fn_rhs * a + q.fs_rhs * b;
+    }
+    matrix_.diag[i] = k;
+    rhs_[i] = f;
+  }
+  // Off-diagonal blocks: each pair owns its block and sums its own contacts in order.
+#pragma omp parallel for schedule(static)
+  for (std::int64_t p = 0; p < np; ++p) {
+    const ContactPair& pr = set_.pairs[p];
+    Mat6 k = Mat6::Zero();
+    for (Index m = pr.first; m < pr.last; ++m) {
+      const Contact& c = cs[m];
+      const ContactCoefficients q = contact_coefficients(c);
+      const bool v_is_a = c.vblock == pr.a;
+      const Vec6& na = v_is_a ? c.e : c.g;
+      const Vec6& nb = v_is_a ? c.g : c.e;
+      const Vec6& sa = v_is_a ? c.es : c.gs;
+      const Vec6& sb = v_is_a ? c.gs : c.es;
+      if (q.kn_eff != 0.0) k.noalias() += q.kn_eff * na * nb.transpose();
+      if (q.ks_eff != 0.0) k.noalias() += q.ks_eff * sa * sb.transpose();
+    }
+    matrix_.off[p] = k;
+  }
+}
+
+bool Engine::judge(int& changed_first) {
+  const auto nc = static_cast<std::int64_t>(set_.contacts.size());
+  int first = -1;
+  int changed = 0;
+#pragma omp parallel for schedule(static) reduction(+ : changed)
+  for (std::int64_t k = 0; k < nc; ++k) {
+    Contact& c = set_.contacts[k];
+    if (judge_contact(c, d_[c.vblock], d_[c.eblock], c.bonded(blocks_.joints))) ++changed;
+  }
+  if (changed > 0) {
+    for (std::int64_t k = 0; k < nc && first < 0; ++k)
+      if (set_.contacts[k].trial != set_.contacts[k].state) first = static_cast<int>(k);
+  }
+  changed_first = first;
+  return changed == 0;
+}
+
+void Engine::accept(double dt) {
+  const auto n = static_cast<std::int64_t>(blocks_.block_count());
+  const auto nc = static_cast<std::int64_t>(set_.contacts.size());
+  bool sliding = false;
+#pragma omp parallel for schedule(static) reduction(|| : sliding)
+  for (std::int64_t k = 0; k < nc; ++k) {
+    commit_contact(set_.contacts[k]);
+    if (set_.contacts[k].state == ContactState::Sliding) sliding = true;
+  }
+  if (sliding) active_.friction = true;
+  const bool dynamic = active_.dynamic;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Vec6& d = d_[i];
+    const PolygonIntegrals& g = blocks_.geometry[i];
+    for (Index v = blocks_.begin(i); v < blocks_.end(i); ++v) displace_point(g.cx, g.cy, d, blocks_.vx[v], blocks_.vy[v]);
+    for (Index l = blocks_.load_offsets[i]; l < blocks_.load_offsets[i + 1]; ++l) {
+      PointLoad& p = blocks_.loads[static_cast<std::size_t>(l)];
+      displace_point(g.cx, g.cy, d, p.x, p.y);
+    }
+    for (Index a = blocks_.anchor_offsets[i]; a < blocks_.anchor_offsets[i + 1]; ++a) {
+      Anchor& p = blocks_.anchors[static_cast<std::size_t>(a)];
+      displace_point(g.cx, g.cy, d, p.x, p.y);
+    }
+    const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
+    const Vec3 de = d.segment<3>(3);
+    blocks_.strain[i] += de;
+    blocks_.stress[i] += mat.elastic * de;
+    if (dynamic)
+      blocks_.velocity[i] = 2.0 / dt * d - blocks_.velocity[i];
+    else
+      blocks_.velocity[i].setZero();
+  }
+  update_block_geometry(blocks_);
+}
+
+Energies Engine::energies() const {
+  Energies e;
+  const auto n = static_cast<std::int64_t>(blocks_.block_count());
+  e.kinetic = chunked_sum(n, [&](std::int64_t i) {
+    const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
+    const Vec6& v = blocks_.velocity[i];
+    return 0.5 * mat.density * v.dot(mass_integral(blocks_.geometry[i]) * v);
+  });
+  e.strain = chunked_sum(n, [&](std::int64_t i) {
+    const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
+    const Vec3& s = blocks_.stress[i];
+    return 0.5 * blocks_.geometry[i].area * s.dot(mat.compliance * s);
+  });
+  e.contact = chunked_sum(static_cast<std::int64_t>(set_.contacts.size()), [&](std::int64_t k) {
+    const Contact& c = set_.contacts[k];
+    if (c.state == ContactState::Open) return 0.0;
+    const double en = 0.5 * c.kn * c.d_iter * c.d_iter;
+    return c.state == ContactState::Locked ? en + 0.5 * c.ks * c.s_iter * c.s_iter : en;
+  });
+  return e;
+}
+
+StepReport Engine::step(double max_dt) {
+  StepReport rep;
+  {
+    Timer t(stats_.times.detection);
+    detect();
+  }
+  const auto& an = scene_.analysis;
+  const double dt_floor = an.dt_max * options_.dt_floor_fraction;
+  const int cap = std::max(1, an.open_close_max);
+  const auto n = static_cast<std::int64_t>(blocks_.block_count());
+  std::vector<double> block_disp(static_cast<std::size_t>(n));
+  BlockVector d_prev = d_;
+  int cuts = 0;
+  for (;;) {
+    const double dt = std::min(dt_, max_dt);
+    // Warm start: the previous step's displacement, scaled to the new step length.
+    const double scale = dt / dt_prev_;
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) d_[i] = scale * d_prev[i];
+    {
+      Timer t(stats_.times.assembly);
+      block_terms(dt);
+    }
+    bool converged = false, solver_ok = true;
+    int it = 0, worst_contact = -1;
+    while (it < cap) {
+      ++it;
+      {
+        Timer t(stats_.times.assembly);
+        assemble();
+      }
+      SolveReport sr;
+      {
+        Timer t(stats_.times.solve);
+        sr = solve(matrix_, set_, rhs_, d_, options_.solver, solver_work_);
+      }
+      ++stats_.solves;
+      stats_.cg_total += sr.iterations;
+      stats_.cg_max = std::max(stats_.cg_max, sr.iterations);
+      rep.cg_iterations += sr.iterations;
+      for (std::int64_t i = 0; i < n; ++i)
+        if (!d_[i].allFinite()) trouble("NaN in the solution at " + describe_block(static_cast<Index>(i)));
+      if (!sr.converged) {
+        solver_ok = false;
+        break;
+      }
+      Timer t(stats_.times.judgement);
+      if (judge(worst_contact)) {
+        converged = true;
+        break;
+      }
+    }
+    if (!converged) {
+      if (solver_ok) ++stats_.cuts_open_close; else ++stats_.cuts_solver;
+      ++cuts;
+      dt_ = dt * options_.dt_cut_factor;
+      reset_trials();
+      if (dt_ < dt_floor) {
+        if (!solver_ok) trouble("the linear solver did not converge and dt fell below its floor");
+        trouble(fmt::format("open-close iteration did not converge in {} iterations and dt fell below its floor; worst: {}",
+                            cap, describe_contact(worst_contact)));
+      }
+      continue;
+    }
+    // Displacement-ratio check (largest vertex displacement of the step).
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const PolygonIntegrals& g = blocks_.geometry[i];
+      double m = 0.0;
+      for (Index v = blocks_.begin(i); v < blocks_.end(i); ++v)
+        m = std::max(m, (displacement_matrix(g.cx, g.cy, blocks_.vx[v], blocks_.vy[v]) * d_[i]).norm());
+      block_disp[static_cast<std::size_t>(i)] = m;
+    }
+    Index worst = -1;
+    double dmax = 0.0;
+    for (std::int64_t i = 0; i < n; ++i)
+      if (block_disp[static_cast<std::size_t>(i)] > dmax) {
+        dmax = block_disp[static_cast<std::size_t>(i)];
+        worst = static_cast<Index>(i);
+      }
+    if (dmax > allowed_) {
+      ++stats_.cuts_displacement;
+      ++cuts;
+      dt_ = dt * options_.dt_cut_factor;
+      reset_trials();
+      if (dt_ < dt_floor)
+        trouble(fmt::format("step displacement {:.3g} m exceeds the allowed {:.3g} m even with dt at its floor; worst: {}",
+                            dmax, allowed_, describe_block(worst)));
+      continue;
+    }
+    // Accept.
+    {
+      Timer t(stats_.times.update);
+      accept(dt);
+    }
+    time_ += dt;
+    ++step_;
+    dt_prev_ = dt;
+    if (cuts == 0 && it <= options_.easy_open_close && dt_ < an.dt_max)
+      dt_ = std::min(an.dt_max, dt_ * options_.dt_grow_factor);
+    rep.step = step_;
+    rep.time = time_;
+    rep.dt = dt;
+    rep.open_close = it;
+    rep.cuts = cuts;
+    rep.max_displacement = dmax;
+    break;
+  }
+  // Statistics of the accepted step.
+  ++stats_.steps;
+  stats_.dt_min = stats_.steps == 1 ? rep.dt : std::min(stats_.dt_min, rep.dt);
+  stats_.dt_max = std::max(stats_.dt_max, rep.dt);
+  stats_.dt_sum += rep.dt;
+  stats_.open_close_total += rep.open_close;
+  stats_.open_close_max = std::max(stats_.open_close_max, rep.open_close);
+  rep.contacts = set_.contacts.size();
+  for (const Contact& c : set_.contacts) {
+    if (c.state == ContactState::Open) continue;
+    ++rep.closed;
+    if (c.state == ContactState::Sliding) ++rep.sliding;
+    rep.max_penetration = std::max(rep.max_penetration, -c.d_iter);
+  }
+  stats_.max_penetration = std::max(stats_.max_penetration, rep.max_penetration);
+  {
+    Timer t(stats_.times.update);
+    rep.energy = energies();
+  }
+  return rep;
+}
+
+}  // namespace ddafrac::dda

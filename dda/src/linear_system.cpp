@@ -1,0 +1,147 @@
+#include "ddafrac/dda/linear_system.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <cmath>
+
+namespace ddafrac::dda {
+
+namespace {
+/// Blocks per reduction chunk: the chunking, not the thread count, fixes the summation order.
+constexpr std::int64_t kChunk = 256;
+}  // namespace
+
+const char* to_string(SolverKind s) { return s == SolverKind::Pcg ? "pcg-block-jacobi" : "eigen-simplicial-ldlt"; }
+
+void multiply(const BlockMatrix& k, const ContactSet& t, const BlockVector& x, BlockVector& y) {
+  const auto n = static_cast<std::int64_t>(x.size());
+  y.resize(x.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    Vec6 acc = k.diag[i] * x[i];
+    for (Index m = t.block_pair_offsets[i]; m < t.block_pair_offsets[i + 1]; ++m) {
+      const Index p = t.block_pairs[m];
+      const ContactPair& pr = t.pairs[p];
+      if (pr.a == i)
+        acc.noalias() += k.off[p] * x[pr.b];
+      else
+        acc.noalias() += k.off[p].transpose() * x[pr.a];
+    }
+    y[i] = acc;
+  }
+}
+
+double dot(const BlockVector& a, const BlockVector& b) {
+  const auto n = static_cast<std::int64_t>(a.size());
+  const std::int64_t chunks = (n + kChunk - 1) / kChunk;
+  std::vector<double> part(static_cast<std::size_t>(chunks), 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    double s = 0.0;
+    const std::int64_t end = std::min(n, (c + 1) * kChunk);
+    for (std::int64_t i = c * kChunk; i < end; ++i) s += a[i].dot(b[i]);
+    part[c] = s;
+  }
+  double s = 0.0;
+  for (double v : part) s += v;
+  return s;
+}
+
+namespace {
+
+SolveReport solve_pcg(const BlockMatrix& k, const ContactSet& t, const BlockVector& b, BlockVector& x,
+                      const SolverSettings& cfg, SolverWorkspace& w) {
+  const auto n = static_cast<std::int64_t>(b.size());
+  SolveReport rep;
+  w.r.resize(b.size());
+  w.z.resize(b.size());
+  w.p.resize(b.size());
+  w.q.resize(b.size());
+  w.preconditioner.resize(b.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) w.preconditioner[i] = k.diag[i].llt().solve(Mat6::Identity());
+  const double bnorm = std::sqrt(dot(b, b));
+  if (bnorm == 0.0) {
+    std::fill(x.begin(), x.end(), Vec6::Zero());
+    rep.converged = true;
+    return rep;
+  }
+  multiply(k, t, x, w.q);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    w.r[i] = b[i] - w.q[i];
+    w.z[i] = w.preconditioner[i] * w.r[i];
+    w.p[i] = w.z[i];
+  }
+  double rz = dot(w.r, w.z);
+  double rnorm = std::sqrt(dot(w.r, w.r));
+  const double target = cfg.tolerance * bnorm;
+  int it = 0;
+  while (rnorm > target && it < cfg.max_iterations) {
+    multiply(k, t, w.p, w.q);
+    const double pq = dot(w.p, w.q);
+    if (!(pq > 0.0)) break;  // not positive definite (or NaN): give up, caller reports it
+    const double alpha = rz / pq;
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+      x[i] += alpha * w.p[i];
+      w.r[i] -= alpha * w.q[i];
+      w.z[i] = w.preconditioner[i] * w.r[i];
+    }
+    const double rz_new = dot(w.r, w.z);
+    rnorm = std::sqrt(dot(w.r, w.r));
+    const double beta = rz_new / rz;
+    rz = rz_new;
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) w.p[i] = w.z[i] + beta * w.p[i];
+    ++it;
+  }
+  rep.iterations = it;
+  rep.relative_residual = rnorm / bnorm;
+  rep.converged = rnorm <= target && std::isfinite(rnorm);
+  return rep;
+}
+
+SolveReport solve_direct(const BlockMatrix& k, const ContactSet& t, const BlockVector& b, BlockVector& x) {
+  const auto nb = static_cast<Eigen::Index>(b.size());
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(36 * nb) + 72 * t.pairs.size());
+  for (Eigen::Index i = 0; i < nb; ++i)
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c) trip.emplace_back(6 * i + r, 6 * i + c, k.diag[static_cast<std::size_t>(i)](r, c));
+  for (std::size_t p = 0; p < t.pairs.size(); ++p) {
+    const Eigen::Index a = t.pairs[p].a, bb = t.pairs[p].b;
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c) {
+        trip.emplace_back(6 * a + r, 6 * bb + c, k.off[p](r, c));
+        trip.emplace_back(6 * bb + c, 6 * a + r, k.off[p](r, c));
+      }
+  }
+  Eigen::SparseMatrix<double> m(6 * nb, 6 * nb);
+  m.setFromTriplets(trip.begin(), trip.end());
+  Eigen::VectorXd rhs(6 * nb);
+  for (Eigen::Index i = 0; i < nb; ++i) rhs.segment<6>(6 * i) = b[static_cast<std::size_t>(i)];
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(m);
+  SolveReport rep;
+  if (ldlt.info() != Eigen::Success) return rep;
+  const Eigen::VectorXd sol = ldlt.solve(rhs);
+  for (Eigen::Index i = 0; i < nb; ++i) x[static_cast<std::size_t>(i)] = sol.segment<6>(6 * i);
+  const double bn = rhs.norm();
+  rep.relative_residual = bn > 0 ? (m * sol - rhs).norm() / bn : 0.0;
+  rep.converged = std::isfinite(rep.relative_residual);
+  return rep;
+}
+
+}  // namespace
+
+SolveReport solve(const BlockMatrix& k, const ContactSet& t, const BlockVector& b, BlockVector& x,
+                  const SolverSettings& settings, SolverWorkspace& work) {
+  x.resize(b.size(), Vec6::Zero());
+  if (settings.kind == SolverKind::Direct) return solve_direct(k, t, b, x);
+  return solve_pcg(k, t, b, x, settings, work);
+}
+
+}  // namespace ddafrac::dda
