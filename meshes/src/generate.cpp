@@ -2,8 +2,8 @@
 
 #include <gmsh.h>
 
+#include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <variant>
 
 #include <fmt/format.h>
@@ -19,7 +19,7 @@ namespace ddafrac::meshes {
 namespace {
 
 constexpr int kFrontalDelaunay = 6;    // Mesh.Algorithm; 8 (Frontal-Delaunay quads) crashes 4.8
-constexpr int kBlossomRecombination = 1;
+constexpr int kBlossomFullQuad = 3;   // Mesh.RecombinationAlgorithm
 constexpr double kSlotEndSizePerWidth = 1.0;  // element size at the slot ends / slot width
 constexpr double kSizeGrowthRate = 0.4;       // m of size per m of distance from the slot ends
 constexpr double kMinSizeExponent = 1.0;      // bounds of the fitted N ~ h^-p law
@@ -189,7 +189,7 @@ Mesh generate_fem_mesh(const Geometry& geometry, double element_size, FemCells c
     const DiscSizing sizing(model);
     if (cells == FemCells::Quadrilaterals) {
       gmsh::option::setNumber("Mesh.RecombineAll", 1);
-      gmsh::option::setNumber("Mesh.RecombinationAlgorithm", kBlossomRecombination);
+      gmsh::option::setNumber("Mesh.RecombinationAlgorithm", kBlossomFullQuad);
     }
     mesh_disc(model, sizing, element_size);
     Mesh mesh = detail::mesh_from_gmsh_model("generated FEM mesh");
