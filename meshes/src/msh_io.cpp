@@ -124,7 +124,7 @@ Mesh read_msh(const std::filesystem::path& path) {
     throw MeshError(file + ": no such file");
   }
   detail::GmshSession session;
-  return detail::gmsh_call("reading " + file, [&] {
+  return detail::gmsh_call(file + ": gmsh cannot read it", [&] {
     gmsh::open(file);
     const std::string error = detail::gmsh_last_error();
     if (!error.empty()) throw MeshError(file + ": gmsh cannot read it: " + error);

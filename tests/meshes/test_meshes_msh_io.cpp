@@ -137,3 +137,24 @@ BOOST_AUTO_TEST_CASE(nodes_off_the_plane) {
   check_error(dir.file("offplane.msh", kFormat + kNames + nodes(0.01) + elements(kTriangles)),
               "off the plane z = 0");
 }
+
+BOOST_AUTO_TEST_CASE(not_a_mesh_file) {
+  TempDir dir;
+  check_error(dir.file("garbage.msh", "this is not a gmsh file\n"), "gmsh cannot read it");
+}
+
+BOOST_AUTO_TEST_CASE(msh_file_geometry_is_read_and_written_files_are_reproducible) {
+  TempDir dir;
+  MeshControl control;
+  control.target_blocks = 1000;
+  const fs::path first = dir.path / "first.msh", second = dir.path / "second.msh";
+  write_msh(generate_dda_mesh(SlitDisc{}, control), first);
+  write_msh(generate_dda_mesh(SlitDisc{}, control), second);
+  BOOST_TEST(read_text(first) == read_text(second));  // same input, byte-identical file
+
+  QualityReport report;
+  const Mesh mesh = generate_dda_mesh(MshFile{first}, control, &report);
+  BOOST_TEST(same_mesh(mesh, read_msh(first), 0.0));
+  BOOST_TEST(report.blocks == body_cells(mesh, "disc"));
+  BOOST_TEST(report.min_angle_deg > 0.0);
+}
