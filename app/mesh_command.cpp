@@ -1,1 +1,91 @@
-// to be written
+// `ddafrac mesh SCENE [--out DIR]`: the scene's DDA mesh and FEM mesh as gmsh files, a picture,
+// and a quality report.
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+
+#include "commands.hpp"
+#include "ddafrac/meshes/generate.hpp"
+#include "ddafrac/meshes/msh_io.hpp"
+#include "ddafrac/meshes/picture.hpp"
+#include "ddafrac/scene/parse.hpp"
+#include "scene_source.hpp"
+
+namespace ddafrac::app {
+
+namespace {
+
+struct MeshArguments {
+  SceneArguments scene;
+  std::string out;
+  bool fem_quads = false;
+};
+
+void print_quality(const char* what, const char* cells, const meshes::QualityReport& q, double seconds) {
+  fmt::print("{:<9} {:>7} {:<6}  min angle {:5.1f}°  mean min angle {:5.1f}°  element size {:.3g} m  "
+             "({} sizing iterations, {:.2f} s)\n",
+             what, q.blocks, cells, q.min_angle_deg, q.mean_min_angle_deg, q.element_size, q.iterations, seconds);
+}
+
+void run_mesh(const MeshArguments& args) {
+  const scene::Scene scene = args.scene.load();
+  const std::filesystem::path out = output_directory(args.out, scene, "mesh");
+  std::filesystem::create_directories(out);
+
+  using Clock = std::chrono::steady_clock;
+  try {
+    const auto start = Clock::now();
+    meshes::QualityReport quality;
+    meshes::Mesh dda;
+    const auto* user_file = std::get_if<meshes::MshFile>(&scene.geometry);
+    if (user_file) {
+      dda = meshes::read_msh(user_file->path);
+      try {
+        scene::check_bodies_against_mesh(scene, dda.body_names);
+      } catch (const scene::SceneError& e) {
+        throw CommandFailed(e.what());
+      }
+      quality = meshes::measure_quality(dda);
+    } else {
+      dda = meshes::generate_dda_mesh(scene.geometry, scene.mesh, &quality);
+    }
+    const double dda_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    meshes::write_msh(dda, out / "dda.msh");
+    meshes::write_mesh_png(dda, out / "dda.png");
+    print_quality("DDA mesh", "blocks", quality, dda_seconds);
+    if (!user_file && scene.mesh.target_blocks > 0) {
+      const double off = static_cast<double>(quality.blocks) / scene.mesh.target_blocks - 1.0;
+      fmt::print("          target {} blocks, hit within {:+.1f}%\n", scene.mesh.target_blocks, 100.0 * off);
+    }
+
+    if (!user_file) {
+      const auto fem_start = Clock::now();
+      meshes::QualityReport fem_quality;
+      const auto cells = args.fem_quads ? meshes::FemCells::Quadrilaterals : meshes::FemCells::Triangles;
+      const meshes::Mesh fem = meshes::generate_fem_mesh(scene.geometry, quality.element_size, cells, &fem_quality);
+      meshes::write_msh(fem, out / "fem.msh");
+      meshes::write_mesh_png(fem, out / "fem.png");
+      print_quality("FEM mesh", "cells", fem_quality, std::chrono::duration<double>(Clock::now() - fem_start).count());
+    }
+  } catch (const meshes::MeshError& e) {
+    throw CommandFailed(fmt::format("{}: cannot mesh the scene: {}", scene.source.string(), e.what()));
+  }
+  fmt::print("wrote {}/{{dda.msh, dda.png{}}}\n", out.string(), std::holds_alternative<meshes::MshFile>(scene.geometry) ? "" : ", fem.msh, fem.png");
+}
+
+}  // namespace
+
+void register_mesh_command(CLI::App& app) {
+  auto args = std::make_shared<MeshArguments>();
+  CLI::App* command = app.add_subcommand("mesh", "mesh a scene: DDA blocks and FEM cells as .msh files, with pictures");
+  args->scene.add_to(*command);
+  command->add_option("--out", args->out, "output directory (default runs/<scene name>/mesh)");
+  command->add_flag("--fem-quads", args->fem_quads, "mesh the FEM model with quadrilaterals instead of triangles");
+  command->callback([args] { run_mesh(*args); });
+}
+
+}  // namespace ddafrac::app
