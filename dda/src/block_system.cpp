@@ -1,5 +1,7 @@
 #include "ddafrac/dda/block_system.hpp"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -119,6 +121,9 @@ BlockSystem build_block_system(const scene::Scene& scene, const meshes::Mesh& me
   s.geometry.resize(nb);
   s.min_edge.resize(nb);
   update_block_geometry(s);
+  s.mass.resize(nb);
+  for (std::size_t c = 0; c < nb; ++c)
+    s.mass[c] = s.materials[static_cast<std::size_t>(s.material[c])].density * s.geometry[c].area;
 
   // Anchors: every vertex of a fixed or prescribed block.
   for (std::size_t c = 0; c < nb; ++c) {

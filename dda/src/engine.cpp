@@ -149,15 +149,15 @@ void Engine::block_terms(double dt) {
   for (std::int64_t i = 0; i < n; ++i) {
     const PolygonIntegrals& g = blocks_.geometry[i];
     const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
-    const Mat6 m = mat.density * mass_integral(g);
+    const Mat6 m = (blocks_.mass[i] / g.area) * mass_integral(g);
     Mat6 k = mass_k * m;
     Vec6 f = Vec6::Zero();
     if (dynamic) f.noalias() += mass_f * (m * blocks_.velocity[i]);
     k.block<3, 3>(3, 3) += g.area * mat.elastic;
     f.segment<3>(3) -= g.area * blocks_.stress[i];
     if (gravity) {
-      f[kU] += mat.density * g.area * an.gravity[0];
-      f[kV] += mat.density * g.area * an.gravity[1];
+      f[kU] += blocks_.mass[i] * an.gravity[0];
+      f[kV] += blocks_.mass[i] * an.gravity[1];
     }
     for (Index l = blocks_.load_offsets[i]; l < blocks_.load_offsets[i + 1]; ++l) {
       const PointLoad& p = blocks_.loads[static_cast<std::size_t>(l)];
@@ -278,9 +278,9 @@ Energies Engine::energies() const {
   Energies e;
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
   e.kinetic = chunked_sum(n, [&](std::int64_t i) {
-    const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
     const Vec6& v = blocks_.velocity[i];
-    return 0.5 * mat.density * v.dot(mass_integral(blocks_.geometry[i]) * v);
+    const PolygonIntegrals& g = blocks_.geometry[i];
+    return 0.5 * (blocks_.mass[i] / g.area) * v.dot(mass_integral(g) * v);
   });
   e.strain = chunked_sum(n, [&](std::int64_t i) {
     const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];

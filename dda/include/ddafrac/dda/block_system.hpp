@@ -60,6 +60,8 @@ struct BlockSystem {
   std::vector<Index> mesh_body;   // index into Mesh::body_names
   std::vector<Index> material;    // index into materials
   std::vector<PolygonIntegrals> geometry;
+  std::vector<double> mass;       // kg per unit thickness, fixed at t = 0 (ρ·initial area): the
+                                  // mass matrix uses ρ_eff = mass/area so strain never changes it
   std::vector<double> min_edge;   // shortest edge of the block, m
   std::vector<Vec6> velocity;     // (u̇0, v̇0, ṙ0, ε̇x, ε̇y, γ̇xy)
   std::vector<Vec3> stress;       // (σxx, σyy, τxy), Pa, tension positive
