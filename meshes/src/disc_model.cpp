@@ -20,6 +20,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxArcAngle = kPi / 2;  // rad; gmsh circle arcs must stay below pi
 constexpr double kSnapToAxis = 1e-15;     // relative; cos(pi/2) is not exactly zero
 constexpr double kSlotClearance = 0.02;   // slot corners stay this fraction of R inside the rim
+constexpr double kAngleRoundOff = 1e-9;   // rad; an arc of exactly k * kMaxArcAngle needs k pieces
 
 enum class Segment { Arc, Chord };
 
@@ -102,7 +103,7 @@ class DiscBuilder {
   /// An arc split into pieces short enough for gmsh's three-point circle arcs.
   void add_arc(int from, double from_angle, int to, double to_angle, const char* group,
                std::vector<int>& curves) {
-    const int pieces = static_cast<int>(std::ceil((to_angle - from_angle) / kMaxArcAngle - 1e-9));
+    const int pieces = static_cast<int>(std::ceil((to_angle - from_angle - kAngleRoundOff) / kMaxArcAngle));
     const double step = (to_angle - from_angle) / pieces;
     for (int k = 1; k <= pieces; ++k) {
       const int next = k == pieces ? to : rim_point(from_angle + k * step);

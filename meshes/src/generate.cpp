@@ -76,6 +76,7 @@ std::size_t mesh_disc(const detail::DiscModel& model, const DiscSizing& sizing, 
   gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, model.surface);
   std::size_t count = 0;
   for (const auto& tags : element_tags) count += tags.size();
+  if (count == 0) throw MeshError(fmt::format("gmsh made no cells at element size {} m", size));
   return count;
 }
 
@@ -160,8 +161,9 @@ Mesh generate_dda_mesh(const Geometry& geometry, const MeshControl& control,
     const DiscSizing sizing(model);
     SizeSearch search(equilateral_size(model.area, control.target_blocks), control.target_blocks);
     std::size_t count = 0;
+    double size = search.size();
     for (int iteration = 1; iteration <= control.max_iterations; ++iteration) {
-      const double size = search.size();
+      size = search.size();
       count = mesh_disc(model, sizing, size);
       if (within(count, control)) {
         Mesh mesh = detail::mesh_from_gmsh_model("generated disc mesh");
@@ -172,8 +174,10 @@ Mesh generate_dda_mesh(const Geometry& geometry, const MeshControl& control,
       search.record(count);
     }
     throw MeshError(fmt::format("no element size gave {} +- {:.1f}% disc blocks in {} iterations "
-                                "(last: {})", control.target_blocks,
-                                100.0 * control.block_tolerance, control.max_iterations, count));
+                                "(last: {} blocks at {} m; a slot's graded ends set a floor of "
+                                "several hundred blocks)", control.target_blocks,
+                                100.0 * control.block_tolerance, control.max_iterations, count,
+                                size));
   });
 }
 
