@@ -174,7 +174,7 @@ Mesh generate_dda_mesh(const Geometry& geometry, const MeshControl& control,
       search.record(count);
     }
     throw MeshError(fmt::format("no element size gave {} +- {:.1f}% disc blocks in {} iterations "
-                                "(last: {} blocks at {} m; a slot's graded ends set a floor of "
+                                "(last: {} blocks at {} m; with a slot, its graded ends alone take "
                                 "several hundred blocks)", control.target_blocks,
                                 100.0 * control.block_tolerance, control.max_iterations, count,
                                 size));
