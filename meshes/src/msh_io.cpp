@@ -11,7 +11,7 @@
 #include "ddafrac/meshes/generate.hpp"
 #include "gmsh_model_mesh.hpp"
 #include "gmsh_session.hpp"
-#include "whole_file.hpp"
+#include "ddafrac/common/whole_file.hpp"
 
 namespace ddafrac::meshes {
 
@@ -109,7 +109,7 @@ void write_msh(const Mesh& mesh, const std::filesystem::path& path) {
     gmsh::option::setNumber("Mesh.MshFileVersion", kMshFileVersion);
     gmsh::option::setNumber("Mesh.Binary", 0);
     gmsh::option::setNumber("Mesh.SaveAll", 0);
-    detail::write_whole_file(path, [](const std::filesystem::path& temporary) {
+    common::write_whole_file(path, [](const std::filesystem::path& temporary) {
       gmsh::write(temporary.string());
       const std::string error = detail::gmsh_last_error();
       if (!error.empty()) throw MeshError(error);

@@ -11,7 +11,7 @@
 #include <fmt/format.h>
 
 #include "ddafrac/meshes/generate.hpp"
-#include "whole_file.hpp"
+#include "ddafrac/common/whole_file.hpp"
 
 namespace ddafrac::meshes {
 
@@ -139,7 +139,7 @@ void write_mesh_png(const Mesh& mesh, const std::filesystem::path& path,
   if (options.draw_cell_edges) stroke_cell_edges(cr.get(), mesh, view);
   stroke_thick_groups(cr.get(), mesh, view);
   cairo_surface_flush(surface.get());
-  detail::write_whole_file(path, [&](const std::filesystem::path& temporary) {
+  common::write_whole_file(path, [&](const std::filesystem::path& temporary) {
     const cairo_status_t status = cairo_surface_write_to_png(surface.get(), temporary.c_str());
     if (status != CAIRO_STATUS_SUCCESS) {
       throw MeshError(fmt::format("{}: cannot write PNG: {}", path.string(),

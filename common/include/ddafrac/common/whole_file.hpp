@@ -1,10 +1,12 @@
 #pragma once
-// Files are written whole: to a temporary name beside the target, then renamed over it.
+// Output files are written whole: to a temporary name beside the target, then renamed over it,
+// so that an interrupted run never leaves a half-written file under the real name.
 
 #include <filesystem>
 #include <functional>
+#include <string_view>
 
-namespace ddafrac::meshes::detail {
+namespace ddafrac::common {
 
 /// Calls write(temporary) and renames the temporary file to `target`. The temporary name keeps
 /// the target's extension (gmsh and others pick the format from it). On failure the temporary
@@ -12,4 +14,7 @@ namespace ddafrac::meshes::detail {
 void write_whole_file(const std::filesystem::path& target,
                       const std::function<void(const std::filesystem::path&)>& write);
 
-}  // namespace ddafrac::meshes::detail
+/// Writes `text` as the whole content of `target`. Throws std::runtime_error naming the file.
+void write_whole_text(const std::filesystem::path& target, std::string_view text);
+
+}  // namespace ddafrac::common
