@@ -1,0 +1,186 @@
+#include "ddafrac/fem/static_problem.hpp"
+
+#include <deal.II/base/timer.h>
+#include <deal.II/lac/full_matrix.h>
+
+#include <cmath>
+#include <map>
+
+#include "model.hpp"
+
+namespace ddafrac::fem {
+
+using detail::Model;
+using dealii::types::boundary_id;
+using dealii::types::global_dof_index;
+
+struct StaticSolution::Impl {
+  std::unique_ptr<Model> model;
+  dealii::Vector<double> u;
+  dealii::Vector<double> load;  // applied nodal forces
+  std::map<std::string, std::array<double, 2>> applied;
+  RunStats stats;
+};
+
+namespace {
+
+constexpr double half_pi = 1.5707963267948966;
+
+/// Makes the load orthogonal to the rigid-body modes (removes the discrete imbalance of a
+/// self-equilibrated load, so that pinning the rigid modes costs no reaction).
+void remove_rigid_components(const Model& model, dealii::Vector<double>& f) {
+  const auto modes = model.rigid_modes();
+  dealii::FullMatrix<double> gram(3, 3), inverse(3, 3);
+  dealii::Vector<double> projection(3), coefficients(3);
+  for (unsigned int a = 0; a < 3; ++a) {
+    projection[a] = modes[a] * f;
+    for (unsigned int b = 0; b < 3; ++b) gram(a, b) = modes[a] * modes[b];
+  }
+  inverse.invert(gram);
+  inverse.vmult(coefficients, projection);
+  for (unsigned int a = 0; a < 3; ++a) f.add(-coefficients[a], modes[a]);
+}
+
+/// Pins the three rigid-body modes: both components of the node nearest the centre, and the
+/// y component of the node farthest from it in x.
+void pin_rigid_modes(const Model& model, detail::Constraints& constraints) {
+  const auto& points = model.dof_points();
+  global_dof_index centre = 0, far = 0;
+  for (global_dof_index i = 0; i < points.size(); i += 2) {
+    if (points[i].norm() < points[centre].norm()) centre = i;
+  }
+  for (global_dof_index i = 0; i < points.size(); i += 2) {
+    if (std::abs(points[i][0] - points[centre][0]) > std::abs(points[far][0] - points[centre][0]))
+      far = i;
+  }
+  for (const global_dof_index i : {centre, centre + 1, far + 1}) constraints.add_line(i);
+}
+
+std::array<double, 2> resultant(const Model& model, const dealii::Vector<double>& f) {
+  std::array<double, 2> sum{0.0, 0.0};
+  for (global_dof_index i = 0; i < f.size(); ++i) sum[model.dof_component(i)] += f[i];
+  return sum;
+}
+
+}  // namespace
+
+StaticSolution solve_static(const StaticProblem& problem) {
+  dealii::Timer timer;
+  auto impl = std::make_unique<StaticSolution::Impl>();
+  impl->model = std::make_unique<Model>(problem.mesh, problem.material, problem.discretisation);
+  const Model& model = *impl->model;
+  detail::Constraints constraints;
+  dealii::Vector<double> load(model.n_dofs());
+
+  // Applies a pressure on the faces of the groups, remembering each group's resultant.
+  auto apply = [&](double pressure, const std::vector<std::string>& groups,
+                   const Model::FaceSelector& extra) {
+    for (const auto& group : groups) {
+      const boundary_id id = model.require_boundary(group);
+      dealii::Vector<double> part(model.n_dofs());
+      model.add_pressure(
+          pressure, [&](const detail::Point& c, boundary_id b) { return b == id && extra(c, b); },
+          part);
+      impl->applied[group] = resultant(model, part);
+      load += part;
+    }
+  };
+  const auto any = [](const detail::Point&, boundary_id) { return true; };
+
+  if (const auto* arc = std::get_if<ArcPressure>(&problem.load)) {
+    if (model.boundary_id("load_top") && model.boundary_id("load_bottom")) {
+      apply(arc->pressure, {"load_top", "load_bottom"}, any);
+    } else {
+      const double half_angle = arc->half_angle;
+      apply(arc->pressure, {"rim"}, [half_angle](const detail::Point& c, boundary_id) {
+        return std::abs(half_pi - std::abs(std::atan2(c[1], c[0]))) > half_pi - half_angle;
+      });
+    }
+    remove_rigid_components(model, load);
+    pin_rigid_modes(model, constraints);
+  } else {
+    const auto& flat = std::get<FlatLoad>(problem.load);
+    const auto bottom = model.boundary_dofs(model.require_boundary("flat_bottom"), 1);
+    global_dof_index pin = bottom.front() - 1;  // x dof of the bottom node nearest x = 0
+    for (const auto i : bottom) {
+      constraints.add_line(i);
+      if (std::abs(model.dof_points()[i - 1][0]) < std::abs(model.dof_points()[pin][0]))
+        pin = i - 1;
+    }
+    constraints.add_line(pin);
+    if (flat.displacement > 0.0) {
+      for (const auto i : model.boundary_dofs(model.require_boundary("flat_top"), 1)) {
+        constraints.add_line(i);
+        constraints.set_inhomogeneity(i, -flat.displacement);
+      }
+    } else {
+      apply(flat.pressure, {"flat_top"}, any);
+    }
+  }
+  constraints.close();
+
+  detail::Matrix stiffness;
+  model.make_sparse_matrix(stiffness, constraints);
+  dealii::Vector<double> rhs(model.n_dofs());
+  model.assemble(constraints, stiffness, nullptr, &rhs);
+  for (global_dof_index i = 0; i < rhs.size(); ++i)
+    if (!constraints.is_constrained(i)) rhs[i] += load[i];
+  const detail::ElasticSolver solver(stiffness, model, problem.solver);
+  impl->stats.setup_seconds = timer.wall_time();
+
+  timer.restart();
+  detail::Vec x = model.make_vector();
+  impl->stats.iterations = solver.solve(x, detail::to_trilinos(rhs, model));
+  impl->u = detail::to_serial(x);
+  constraints.distribute(impl->u);
+  impl->stats.solve_seconds = timer.wall_time();
+  impl->stats.cells = model.n_cells();
+  impl->stats.dofs = model.n_dofs();
+  impl->load = std::move(load);
+  return StaticSolution(std::move(impl));
+}
+
+StaticSolution::StaticSolution(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+StaticSolution::StaticSolution(StaticSolution&&) noexcept = default;
+StaticSolution& StaticSolution::operator=(StaticSolution&&) noexcept = default;
+StaticSolution::~StaticSolution() = default;
+
+StressSample StaticSolution::stress_at(double x, double y) const {
+  const auto s = impl_->model->stress_at(impl_->u, detail::Point(x, y));
+  if (!s) throw FemError("point (" + std::to_string(x) + ", " + std::to_string(y) +
+                         ") is outside the FEM body");
+  return make_sample(x, y, *s);
+}
+
+std::vector<StressSample> StaticSolution::profile(double x0, double y0, double x1, double y1,
+                                                  int n) const {
+  if (n < 2) throw FemError("a profile needs at least two points");
+  std::vector<StressSample> out;
+  for (int i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / (n - 1);
+    out.push_back(stress_at(x0 + t * (x1 - x0), y0 + t * (y1 - y0)));
+  }
+  return out;
+}
+
+std::array<double, 2> StaticSolution::boundary_force(const std::string& group) const {
+  const Model& model = *impl_->model;
+  const auto internal = model.internal_force(impl_->u);
+  std::array<double, 2> sum{0.0, 0.0};
+  for (const auto i : model.boundary_dofs(model.require_boundary(group), -1))
+    sum[model.dof_component(i)] += internal[i] - impl_->load[i];
+  return sum;
+}
+
+std::array<double, 2> StaticSolution::applied_force(const std::string& group) const {
+  const auto it = impl_->applied.find(group);
+  return it == impl_->applied.end() ? std::array<double, 2>{0.0, 0.0} : it->second;
+}
+
+void StaticSolution::write_vtu(const std::filesystem::path& path) const {
+  impl_->model->write_vtu(impl_->u, path);
+}
+
+const RunStats& StaticSolution::stats() const { return impl_->stats; }
+
+}  // namespace ddafrac::fem
