@@ -22,52 +22,41 @@ constexpr double kTwoPi = 6.283185307179586;
 constexpr double kMaxCellsPerBlock = 4.0;
 /// Vertex-vertex capture radius relative to the shorter block edge (keeps VV local on fine meshes).
 constexpr double kVertexVertexEdgeFraction = 0.1;
+/// Deepest penetration still paired with an edge, relative to the shorter block edge: a vertex
+/// pushed deeper than the search distance by a hard impact must keep its contact.
+constexpr double kPenetrationEdgeFraction = 0.3;
 
 struct View {
   const BlockSystem& s;
+  const DetectionWorkspace& w;
   double x(Index v) const { return s.vx[static_cast<std::size_t>(v)]; }
   double y(Index v) const { return s.vy[static_cast<std::size_t>(v)]; }
   Index prev(Index block, Index v) const { return v == s.begin(block) ? s.end(block) - 1 : v - 1; }
   Index next(Index block, Index v) const { return v + 1 == s.end(block) ? s.begin(block) : v + 1; }
 };
 
-/// Angle rule: the wedge of block `block` at vertex v lies on the outer side of an edge with
-/// outward unit normal (nx, ny), within the tolerance, and the vertex is convex.
-bool wedge_faces_edge(const View& w, Index block, Index v, double nx, double ny, double sin_tol) {
-  const Index p = w.prev(block, v), q = w.next(block, v);
-  const double ax = w.x(p) - w.x(v), ay = w.y(p) - w.y(v);
-  const double bx = w.x(q) - w.x(v), by = w.y(q) - w.y(v);
-  if (bx * ay - by * ax <= 0.0) return false;  // reflex vertex: its edges make the contact
-  const double la = std::hypot(ax, ay), lb = std::hypot(bx, by);
-  return ax * nx + ay * ny >= -sin_tol * la && bx * nx + by * ny >= -sin_tol * lb;
-}
-
-/// Interior wedge of a vertex as [start angle, start + opening) (CCW from the next edge).
-void wedge(const View& w, Index block, Index v, double& start, double& opening) {
-  const Index p = w.prev(block, v), q = w.next(block, v);
-  start = std::atan2(w.y(q) - w.y(v), w.x(q) - w.x(v));
-  double end = std::atan2(w.y(p) - w.y(v), w.x(p) - w.x(v));
-  opening = std::fmod(end - start + 2.0 * kTwoPi, kTwoPi);
+/// Angle rule: the wedge at vertex v lies on the outer side of an edge with outward unit normal
+/// (nx, ny), within the tolerance, and the vertex is convex (reflex vertices contact by edges).
+bool wedge_faces_edge(const View& w, Index v, double nx, double ny, double sin_tol) {
+  const auto k = static_cast<std::size_t>(v);
+  if (!w.w.convex[k]) return false;
+  return w.w.ax[k] * nx + w.w.ay[k] * ny >= -sin_tol && w.w.bx[k] * nx + w.w.by[k] * ny >= -sin_tol;
 }
 
 double angle_mod(double a) { return std::fmod(std::fmod(a, kTwoPi) + kTwoPi, kTwoPi); }
 
 /// Smallest angular gap between the wedges of two coincident vertices (0 if they overlap).
-double wedge_gap(const View& w, Index ba, Index va, Index bb, Index vb) {
-  double sa, oa, sb, ob;
-  wedge(w, ba, va, sa, oa);
-  wedge(w, bb, vb, sb, ob);
+double wedge_gap(const View& w, Index va, Index vb) {
+  const auto a = static_cast<std::size_t>(va), b = static_cast<std::size_t>(vb);
+  const double sa = w.w.wedge_start[a], oa = w.w.wedge_open[a];
+  const double sb = w.w.wedge_start[b], ob = w.w.wedge_open[b];
   const double g1 = angle_mod(sb - (sa + oa));
   const double g2 = angle_mod(sa - (sb + ob));
   if (oa + ob + g1 + g2 > kTwoPi + 1e-9) return 0.0;
   return std::min(g1, g2);
 }
 
-struct Candidate {
-  bool valid = false;
-  double abs_d = 0.0;
-  Contact c;
-};
+using Candidate = ContactCandidate;
 
 Index find_joint(const BlockSystem& s, Index p, Index q, meshes::Index nv, meshes::Index n2,
                  meshes::Index n3) {
@@ -82,45 +71,49 @@ Index find_joint(const BlockSystem& s, Index p, Index q, meshes::Index nv, meshe
   return -1;
 }
 
-/// Vertex v of block p against edge e0->e1 of block q: a contact record with gap and parameter.
-Contact make_contact(const View& w, Index p, Index v, Index q, Index e0, Index e1, bool vv) {
+/// Full contact record of a candidate: identity, gap and edge parameter.
+Contact make_contact(const View& w, const Candidate& cd) {
   Contact c;
-  c.vblock = p;
-  c.eblock = q;
+  const Index v = cd.vertex, e0 = cd.e0, e1 = w.next(cd.eblock, cd.e0);
+  c.vblock = cd.vblock;
+  c.eblock = cd.eblock;
   c.vertex = v;
   c.edge0 = e0;
   c.edge1 = e1;
-  c.vertex_vertex = vv;
+  c.vertex_vertex = cd.vv;
   const double dx = w.x(e1) - w.x(e0), dy = w.y(e1) - w.y(e0);
   const double l2 = dx * dx + dy * dy;
-  const double l = std::sqrt(l2);
-  c.d0 = ((w.x(v) - w.x(e0)) * dy - (w.y(v) - w.y(e0)) * dx) / l;
+  c.d0 = cd.d;
   c.ref_t = ((w.x(v) - w.x(e0)) * dx + (w.y(v) - w.y(e0)) * dy) / l2;
-  c.edge_length = l;
-  c.joint = find_joint(w.s, p, q, w.s.vertex_node[static_cast<std::size_t>(v)],
+  c.edge_length = std::sqrt(l2);
+  c.joint = find_joint(w.s, cd.vblock, cd.eblock, w.s.vertex_node[static_cast<std::size_t>(v)],
                        w.s.vertex_node[static_cast<std::size_t>(e0)], w.s.vertex_node[static_cast<std::size_t>(e1)]);
   return c;
 }
 
-void offer(Candidate& slot, const Contact& c) {
-  const double ad = std::abs(c.d0);
-  if (!slot.valid || ad < slot.abs_d) {
-    slot.valid = true;
-    slot.abs_d = ad;
-    slot.c = c;
-  }
+/// Signed gap of vertex v against the edge starting at e0 (outward unit normal precomputed).
+double gap(const View& w, Index v, Index e0) {
+  const auto k = static_cast<std::size_t>(e0);
+  return (w.x(v) - w.x(e0)) * w.w.enx[k] + (w.y(v) - w.y(e0)) * w.w.eny[k];
+}
+
+void offer(Candidate& slot, const Candidate& c) {
+  if (!slot.valid || std::abs(c.d) < std::abs(slot.d)) slot = c;
 }
 
 /// Narrow phase of one block pair a < b; appends at most one contact per vertex.
 void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
-                  std::vector<Candidate>& best, std::vector<Contact>& out) {
+                  std::vector<Candidate>& best, std::vector<Candidate>& out) {
   const BlockSystem& s = w.s;
+  const DetectionWorkspace& ws = w.w;
   const Index na = s.end(a) - s.begin(a);
   const Index nb = s.end(b) - s.begin(b);
   best.assign(static_cast<std::size_t>(na + nb), Candidate{});
   const double search = prm.search_distance;
   const double vv = std::min(search, kVertexVertexEdgeFraction * std::min(s.min_edge[a], s.min_edge[b]));
+  const double vv2 = vv * vv;
   const double sin_tol = std::sin(prm.angle_tolerance);
+  const double depth = std::max(search, kPenetrationEdgeFraction * std::min(s.min_edge[a], s.min_edge[b]));
   auto slot_of = [&](Index block, Index v) -> Candidate& {
     return block == a ? best[static_cast<std::size_t>(v - s.begin(a))]
                       : best[static_cast<std::size_t>(na + v - s.begin(b))];
@@ -129,48 +122,76 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
   for (int side = 0; side < 2; ++side) {
     const Index p = side == 0 ? a : b;  // vertex block
     const Index q = side == 0 ? b : a;  // edge block
+    const double bx0 = ws.xmin[q], bx1 = ws.xmax[q], by0 = ws.ymin[q], by1 = ws.ymax[q];
     for (Index v = s.begin(p); v < s.end(p); ++v) {
+      const double px = w.x(v), py = w.y(v);
+      if (px < bx0 - depth || px > bx1 + depth || py < by0 - depth || py > by1 + depth) continue;
       for (Index e0 = s.begin(q); e0 < s.end(q); ++e0) {
+        const auto k = static_cast<std::size_t>(e0);
         const Index e1 = w.next(q, e0);
-        const double dx = w.x(e1) - w.x(e0), dy = w.y(e1) - w.y(e0);
-        const double l2 = dx * dx + dy * dy;
-        const double l = std::sqrt(l2);
-        const double rx = w.x(v) - w.x(e0), ry = w.y(v) - w.y(e0);
-        const double d = (rx * dy - ry * dx) / l;
-        if (std::abs(d) > search) continue;
-        const double t = (rx * dx + ry * dy) / l2;
-        if (t < 0.0 || t > 1.0) continue;
-        if (std::hypot(rx, ry) <= vv || std::hypot(w.x(v) - w.x(e1), w.y(v) - w.y(e1)) <= vv) continue;
-        if (!wedge_faces_edge(w, p, v, dy / l, -dx / l, sin_tol)) continue;
-        offer(slot_of(p, v), make_contact(w, p, v, q, e0, e1, false));
+        const double rx = px - w.x(e0), ry = py - w.y(e0);
+        const double d = rx * ws.enx[k] + ry * ws.eny[k];
+        if (d > search || d < -depth) continue;
+        const double l = ws.elen[k];
+        const double along = -rx * ws.eny[k] + ry * ws.enx[k];  // (P - P2)·u with u = (-ny, nx)
+        if (along < 0.0 || along > l) continue;
+        const double sx = px - w.x(e1), sy = py - w.y(e1);
+        if (rx * rx + ry * ry <= vv2 || sx * sx + sy * sy <= vv2) continue;
+        if (!wedge_faces_edge(w, v, ws.enx[k], ws.eny[k], sin_tol)) continue;
+        offer(slot_of(p, v), Candidate{true, false, d, p, v, q, e0});
       }
     }
   }
   // Vertex-vertex: reduce to the reference line with the largest gap (the entrance line).
   for (Index v = s.begin(a); v < s.end(a); ++v) {
     for (Index u = s.begin(b); u < s.end(b); ++u) {
-      if (std::hypot(w.x(v) - w.x(u), w.y(v) - w.y(u)) > vv) continue;
-      if (wedge_gap(w, a, v, b, u) > prm.vv_max_gap_angle) continue;
+      const double dx = w.x(v) - w.x(u), dy = w.y(v) - w.y(u);
+      if (dx * dx + dy * dy > vv2) continue;
+      if (wedge_gap(w, v, u) > prm.vv_max_gap_angle) continue;
       const Index opts[4][4] = {{a, v, b, w.prev(b, u)}, {a, v, b, u}, {b, u, a, w.prev(a, v)}, {b, u, a, v}};
-      bool have = false;
-      Contact chosen;
+      Candidate chosen;
       for (const auto& o : opts) {
-        const Index p = o[0], pv = o[1], q = o[2], e0 = o[3];
-        const Index e1 = w.next(q, e0);
-        const double dx = w.x(e1) - w.x(e0), dy = w.y(e1) - w.y(e0);
-        const double l = std::hypot(dx, dy);
-        if (!wedge_faces_edge(w, p, pv, dy / l, -dx / l, sin_tol)) continue;
-        Contact c = make_contact(w, p, pv, q, e0, e1, true);
-        if (!have || c.d0 > chosen.d0) {
-          chosen = c;
-          have = true;
-        }
+        const auto k = static_cast<std::size_t>(o[3]);
+        if (!wedge_faces_edge(w, o[1], ws.enx[k], ws.eny[k], sin_tol)) continue;
+        const double d = gap(w, o[1], o[3]);
+        if (!chosen.valid || d > chosen.d) chosen = Candidate{true, true, d, o[0], o[1], o[2], o[3]};
       }
-      if (have) offer(slot_of(chosen.vblock, chosen.vertex), chosen);
+      if (chosen.valid) offer(slot_of(chosen.vblock, chosen.vertex), chosen);
     }
   }
   for (const Candidate& c : best)
-    if (c.valid) out.push_back(c.c);
+    if (c.valid) out.push_back(c);
+}
+
+/// Per-vertex data of the narrow phase: unit directions of the two adjacent edges, convexity,
+/// the interior wedge as an angle interval, and the outward normal and length of the next edge.
+void vertex_data(const BlockSystem& s, DetectionWorkspace& w) {
+  const std::size_t nv = s.vertex_count();
+  for (auto* v : {&w.ax, &w.ay, &w.bx, &w.by, &w.wedge_start, &w.wedge_open, &w.enx, &w.eny, &w.elen}) v->resize(nv);
+  w.convex.resize(nv);
+  const auto nb = static_cast<std::int64_t>(s.block_count());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < nb; ++b) {
+    const Index v0 = s.begin(b), v1 = s.end(b);
+    for (Index v = v0; v < v1; ++v) {
+      const Index p = v == v0 ? v1 - 1 : v - 1;
+      const Index q = v + 1 == v1 ? v0 : v + 1;
+      const double ax = s.vx[p] - s.vx[v], ay = s.vy[p] - s.vy[v];
+      const double bx = s.vx[q] - s.vx[v], by = s.vy[q] - s.vy[v];
+      const double la = std::sqrt(ax * ax + ay * ay), lb = std::sqrt(bx * bx + by * by);
+      w.ax[v] = ax / la;
+      w.ay[v] = ay / la;
+      w.bx[v] = bx / lb;
+      w.by[v] = by / lb;
+      w.convex[v] = bx * ay - by * ax > 0.0;
+      const double start = std::atan2(by, bx);
+      w.wedge_start[v] = start;
+      w.wedge_open[v] = std::fmod(std::atan2(ay, ax) - start + 2.0 * kTwoPi, kTwoPi);
+      w.enx[v] = by / lb;
+      w.eny[v] = -bx / lb;
+      w.elen[v] = lb;
+    }
+  }
 }
 
 }  // namespace
@@ -241,7 +262,8 @@ std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams
   }
   work.candidates.resize(n);
   work.found.resize(n);
-  const View w{s};
+  vertex_data(s, work);
+  const View w{s, work};
 #pragma omp parallel
   {
     std::vector<Candidate> best;
@@ -274,7 +296,8 @@ std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams
   for (std::size_t b = 0; b < n; ++b) start[b + 1] = start[b] + work.found[b].size();
   result.resize(start[n]);
 #pragma omp parallel for schedule(static)
-  for (std::int64_t b = 0; b < ni; ++b) std::copy(work.found[b].begin(), work.found[b].end(), result.begin() + static_cast<std::ptrdiff_t>(start[b]));
+  for (std::int64_t b = 0; b < ni; ++b)
+    for (std::size_t k = 0; k < work.found[b].size(); ++k) result[start[b] + k] = make_contact(w, work.found[b][k]);
   return result;
 }
 

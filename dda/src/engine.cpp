@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "ddafrac/dda/contact_mechanics.hpp"
 #include "ddafrac/dda/geometry.hpp"
@@ -223,18 +224,17 @@ void Engine::assemble() {
 
 bool Engine::judge(int& changed_first) {
   const auto nc = static_cast<std::int64_t>(set_.contacts.size());
-  int first = -1;
+  int first = std::numeric_limits<int>::max();
   int changed = 0;
-#pragma omp parallel for schedule(static) reduction(+ : changed)
+#pragma omp parallel for schedule(static) reduction(+ : changed) reduction(min : first)
   for (std::int64_t k = 0; k < nc; ++k) {
     Contact& c = set_.contacts[k];
-    if (judge_contact(c, d_[c.vblock], d_[c.eblock], c.bonded(blocks_.joints))) ++changed;
+    if (judge_contact(c, d_[c.vblock], d_[c.eblock], c.bonded(blocks_.joints))) {
+      ++changed;
+      first = std::min(first, static_cast<int>(k));
+    }
   }
-  if (changed > 0) {
-    for (std::int64_t k = 0; k < nc && first < 0; ++k)
-      if (set_.contacts[k].trial != set_.contacts[k].state) first = static_cast<int>(k);
-  }
-  changed_first = first;
+  changed_first = changed > 0 ? first : -1;
   return changed == 0;
 }
 

@@ -76,12 +76,25 @@ struct DetectionParams {
   double vv_max_gap_angle = 0.2;    // rad: vertex-vertex contact only if the wedges are this close
 };
 
+/// A provisional contact of the narrow phase: vertex of vblock against the edge of eblock that
+/// starts at vertex e0.
+struct ContactCandidate {
+  bool valid = false;
+  bool vv = false;
+  double d = 0.0;
+  Index vblock = 0, vertex = 0, eblock = 0, e0 = 0;
+};
+
 /// Reusable scratch space of the broad phase (avoids reallocation every step).
 struct DetectionWorkspace {
-  std::vector<double> xmin, xmax, ymin, ymax;
+  std::vector<double> xmin, xmax, ymin, ymax;  // per block, expanded by half the search distance
+  // Per vertex: unit directions to the previous/next vertex, convexity, interior wedge
+  // [start, start + open) in radians, outward normal and length of the edge to the next vertex.
+  std::vector<double> ax, ay, bx, by, wedge_start, wedge_open, enx, eny, elen;
+  std::vector<char> convex;
   std::vector<Index> cell_offsets, cell_blocks;
   std::vector<std::vector<Index>> candidates;  // per block: partner blocks > it
-  std::vector<std::vector<Contact>> found;     // per block: contacts of its pairs
+  std::vector<std::vector<ContactCandidate>> found;  // per block: contacts of its pairs
 };
 
 /// Finds all contacts (identity and geometry only; state is transferred afterwards).

@@ -1,0 +1,60 @@
+#pragma once
+// A whole run: the time loop driving an Engine to the scene's end time, writing the run
+// directory (DESIGN.md §9): summary.json, history.csv, vtk/*.vtu + run.pvd. Every file is written
+// whole (temporary name, then rename), so an interrupted or failed run leaves valid files.
+
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "ddafrac/dda/engine.hpp"
+
+namespace ddafrac::dda {
+
+/// Exit status of a run (also the process exit code of `ddafrac run`).
+enum RunExit : int { kRunCompleted = 0, kRunNumericalTrouble = 3, kRunInterrupted = 130 };
+
+struct Progress {
+  double time = 0.0, end_time = 0.0;  // s, simulated
+  long step = 0;
+  double dt = 0.0;
+  int open_close = 0, cg_iterations = 0;  // of the latest step
+  double wall = 0.0;                       // s since the run started
+};
+
+struct RunOptions {
+  std::filesystem::path out_dir;
+  int threads = 1;          // recorded in summary.json (the caller sets the OpenMP thread count)
+  long max_steps = 0;       // stop after this many steps (0: run to the scene's end time)
+  int history_every = 1;    // history.csv row every N accepted steps
+  bool vtk = true;          // snapshots at every output interval
+  double progress_every = 0.1;  // wall seconds between progress callbacks
+  std::function<void(const Progress&)> progress;
+  /// Stop request (e.g. set by a SIGINT handler owned by the caller); checked once per step.
+  const std::atomic<bool>* stop = nullptr;
+};
+
+struct RunResult {
+  int exit_status = kRunCompleted;
+  std::string reason;   // "completed", "max_steps", "interrupted", "numerical_trouble"
+  std::string message;  // for numerical trouble: step, time, worst block/contact
+  long steps = 0;
+  double time = 0.0;
+  double wall = 0.0;
+};
+
+/// Runs the engine to its end time (or max_steps / stop request / numerical trouble).
+RunResult run_simulation(Engine& engine, const RunOptions& options);
+
+/// Writes `content` to `path` whole: a temporary file next to it, then rename.
+void write_file_atomically(const std::filesystem::path& path, const std::string& content);
+
+/// VTK XML unstructured grid of the blocks (polygons): cell data body, stress, sigma1, sigma3,
+/// velocity. ASCII.
+std::string vtu_document(const Engine& engine);
+
+/// Maximum and minimum principal stress (tension positive) of (σxx, σyy, τxy).
+void principal_stresses(const Vec3& s, double& sigma1, double& sigma3);
+
+}  // namespace ddafrac::dda
