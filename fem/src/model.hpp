@@ -66,9 +66,10 @@ class Model {
   /// With `rhs`, inhomogeneous constraints add their -K g to it.
   void assemble(const Constraints& constraints, Matrix& stiffness, Matrix* mass,
                 dealii::Vector<double>* rhs = nullptr) const;
-  /// Adds the load of a pressure p (Pa, positive pushes into the body) on the faces for which
-  /// `selected(face centre, boundary id)` is true.
-  using FaceSelector = std::function<bool(const Point& centre, dealii::types::boundary_id id)>;
+  /// Adds the load of a pressure p (Pa, positive pushes into the body) on boundary faces,
+  /// scaled at each face quadrature point by `selected(point, boundary id)` (1 = loaded,
+  /// 0 = free), so that a loaded arc may end inside a face.
+  using FaceSelector = std::function<double(const Point& point, dealii::types::boundary_id id)>;
   void add_pressure(double pressure, const FaceSelector& selected,
                     dealii::Vector<double>& rhs) const;
   /// Internal force vector K u (unconstrained, cell by cell).

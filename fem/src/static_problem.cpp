@@ -79,21 +79,22 @@ StaticSolution solve_static(const StaticProblem& problem) {
       const boundary_id id = model.require_boundary(group);
       dealii::Vector<double> part(model.n_dofs());
       model.add_pressure(
-          pressure, [&](const detail::Point& c, boundary_id b) { return b == id && extra(c, b); },
-          part);
+          pressure,
+          [&](const detail::Point& q, boundary_id b) { return b == id ? extra(q, b) : 0.0; }, part);
       impl->applied[group] = resultant(model, part);
       load += part;
     }
   };
-  const auto any = [](const detail::Point&, boundary_id) { return true; };
+  const auto everywhere = [](const detail::Point&, boundary_id) { return 1.0; };
 
   if (const auto* arc = std::get_if<ArcPressure>(&problem.load)) {
     if (model.boundary_id("load_top") && model.boundary_id("load_bottom")) {
-      apply(arc->pressure, {"load_top", "load_bottom"}, any);
+      apply(arc->pressure, {"load_top", "load_bottom"}, everywhere);
     } else {
       const double half_angle = arc->half_angle;
-      apply(arc->pressure, {"rim"}, [half_angle](const detail::Point& c, boundary_id) {
-        return std::abs(half_pi - std::abs(std::atan2(c[1], c[0]))) > half_pi - half_angle;
+      apply(arc->pressure, {"rim"}, [half_angle](const detail::Point& q, boundary_id) {
+        const bool on_arc = std::abs(half_pi - std::abs(std::atan2(q[1], q[0]))) < half_angle;
+        return on_arc ? 1.0 : 0.0;
       });
     }
     remove_rigid_components(model, load);
@@ -114,7 +115,7 @@ StaticSolution solve_static(const StaticProblem& problem) {
         constraints.set_inhomogeneity(i, -flat.displacement);
       }
     } else {
-      apply(flat.pressure, {"flat_top"}, any);
+      apply(flat.pressure, {"flat_top"}, everywhere);
     }
   }
   constraints.close();
