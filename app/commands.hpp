@@ -25,6 +25,7 @@ class CommandFailed : public std::runtime_error {
 void register_mesh_command(CLI::App& app);   // mesh_command.cpp
 void register_run_command(CLI::App& app);    // run_command.cpp   (DDA engine)
 void register_bench_command(CLI::App& app);  // bench_command.cpp (DDA benchmark)
+void register_sweep_command(CLI::App& app);  // sweep_command.cpp (many runs, one table)
 #ifdef DDAFRAC_WITH_FEM
 void register_fem_command(CLI::App& app);    // fem_command.cpp   (deal.II reference)
 #endif

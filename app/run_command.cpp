@@ -1,6 +1,157 @@
-// Placeholder: the DDA engine issue replaces this with the real `ddafrac run`.
+// `ddafrac run SCENE [--out DIR] [--threads N] [--set key=value ...]`: one DDA run of a scene,
+// with a progress bar on a terminal (plain lines otherwise), writing the run directory.
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <omp.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <variant>
+
 #include "commands.hpp"
+#include "ddafrac/dda/run.hpp"
+#include "ddafrac/meshes/generate.hpp"
+#include "ddafrac/meshes/msh_io.hpp"
+#include "ddafrac/scene/parse.hpp"
+#include "scene_source.hpp"
 
 namespace ddafrac::app {
-void register_run_command(CLI::App&) {}
+
+namespace {
+
+/// Set by the SIGINT handler while a run is in progress; the run stops at the next step.
+std::atomic<bool> stop_requested{false};
+
+extern "C" void on_sigint(int) { stop_requested.store(true); }
+
+/// Installs the SIGINT handler for the lifetime of a run and restores the previous one after.
+class SigintGuard {
+ public:
+  SigintGuard() {
+    stop_requested.store(false);
+    previous_ = std::signal(SIGINT, on_sigint);
+  }
+  ~SigintGuard() { std::signal(SIGINT, previous_); }
+  SigintGuard(const SigintGuard&) = delete;
+  SigintGuard& operator=(const SigintGuard&) = delete;
+
+ private:
+  void (*previous_)(int) = SIG_DFL;
+};
+
+struct RunArguments {
+  SceneArguments scene;
+  std::string out;
+  int threads = 0;
+  std::string solver = "pcg";
+  long max_steps = 0;
+  bool no_vtk = false;
+};
+
+std::string eta_text(double seconds) {
+  if (!(seconds >= 0.0) || seconds > 1e7) return "--";
+  const long s = static_cast<long>(seconds);
+  if (s >= 3600) return fmt::format("{}h{:02d}m", s / 3600, static_cast<int>((s % 3600) / 60));
+  if (s >= 60) return fmt::format("{}m{:02d}s", s / 60, static_cast<int>(s % 60));
+  return fmt::format("{}s", s);
+}
+
+void show_progress(const dda::Progress& p, bool tty) {
+  const double frac = p.end_time > 0.0 ? std::min(1.0, p.time / p.end_time) : 0.0;
+  const double eta = frac > 0.0 ? p.wall * (1.0 - frac) / frac : -1.0;
+  if (tty) {
+    constexpr int kWidth = 30;
+    const int filled = static_cast<int>(frac * kWidth);
+    fmt::print(stderr, "\r[{}{}] {:5.1f}%  t {:.4g}/{:.4g} s  step {}  dt {:.3g} s  oc {}  cg {}  ETA {}   ",
+               std::string(static_cast<std::size_t>(filled), '#'), std::string(static_cast<std::size_t>(kWidth - filled), '-'),
+               100.0 * frac, p.time, p.end_time, p.step, p.dt, p.open_close, p.cg_iterations, eta_text(eta));
+  } else {
+    fmt::print("t = {:.6g} s of {:.6g} s ({:.1f}%), step {}, dt {:.3g} s, open-close {}, cg {}, ETA {}\n", p.time,
+               p.end_time, 100.0 * frac, p.step, p.dt, p.open_close, p.cg_iterations, eta_text(eta));
+  }
+  std::fflush(tty ? stderr : stdout);
+}
+
+meshes::Mesh scene_mesh(const scene::Scene& scene) {
+  try {
+    if (const auto* file = std::get_if<meshes::MshFile>(&scene.geometry)) {
+      meshes::Mesh m = meshes::read_msh(file->path);
+      scene::check_bodies_against_mesh(scene, m.body_names);
+      return m;
+    }
+    return meshes::generate_dda_mesh(scene.geometry, scene.mesh);
+  } catch (const meshes::MeshError& e) {
+    throw CommandFailed(fmt::format("{}: cannot mesh the scene: {}", scene.source.string(), e.what()));
+  } catch (const scene::SceneError& e) {
+    throw CommandFailed(e.what());
+  }
+}
+
+void run_run(const RunArguments& args) {
+  const scene::Scene scene = args.scene.load();
+  const std::filesystem::path out = output_directory(args.out, scene, "run");
+  if (args.threads > 0) omp_set_num_threads(args.threads);
+  const int threads = omp_get_max_threads();
+
+  const meshes::Mesh mesh = scene_mesh(scene);
+  dda::EngineOptions options;
+  options.solver.kind = args.solver == "direct" ? dda::SolverKind::Direct : dda::SolverKind::Pcg;
+  std::unique_ptr<dda::Engine> engine;
+  try {
+    engine = std::make_unique<dda::Engine>(scene, mesh, options);
+  } catch (const std::invalid_argument& e) {
+    throw CommandFailed(fmt::format("{}: {}", scene.source.string(), e.what()));
+  }
+  fmt::print("{}: {} blocks, {} virtual joints, {} thread(s), solver {}, end time {:.4g} s -> {}\n", scene.name,
+             engine->blocks().block_count(), engine->blocks().joints.size(), threads, dda::to_string(options.solver.kind),
+             scene.analysis.end_time, out.string());
+  std::fflush(stdout);
+
+  const bool tty = ::isatty(::fileno(stderr)) != 0;
+  dda::RunOptions ro;
+  ro.out_dir = out;
+  ro.threads = threads;
+  ro.max_steps = args.max_steps;
+  ro.vtk = scene.output.vtk && !args.no_vtk;
+  ro.progress_every = tty ? 0.2 : 5.0;
+  ro.progress = [tty](const dda::Progress& p) { show_progress(p, tty); };
+  dda::RunResult result;
+  {
+    SigintGuard guard;
+    ro.stop = &stop_requested;
+    result = dda::run_simulation(*engine, ro);
+  }
+  if (tty) fmt::print(stderr, "\n");
+  const auto& st = engine->statistics();
+  fmt::print("{}: {} steps, t = {:.6g} s, wall {:.2f} s, dt cuts {}, open-close mean {:.2f}, CG mean {:.2f} max {}\n",
+             result.reason, st.steps, engine->time(), result.wall,
+             st.cuts_displacement + st.cuts_open_close + st.cuts_solver,
+             st.steps ? static_cast<double>(st.open_close_total) / static_cast<double>(st.steps) : 0.0,
+             st.solves ? static_cast<double>(st.cg_total) / static_cast<double>(st.solves) : 0.0, st.cg_max);
+  fmt::print("wrote {}/{{summary.json, history.csv{}}}\n", out.string(), ro.vtk ? ", run.pvd, vtk/" : "");
+  if (result.exit_status == dda::kRunInterrupted)
+    throw CommandFailed(result.message + "; the files written so far are valid", result.exit_status);
+  if (result.exit_status != dda::kRunCompleted) throw CommandFailed(result.message, result.exit_status);
+}
+
+}  // namespace
+
+void register_run_command(CLI::App& app) {
+  auto args = std::make_shared<RunArguments>();
+  CLI::App* command = app.add_subcommand("run", "run the DDA simulation of a scene and write its run directory");
+  args->scene.add_to(*command);
+  command->add_option("--out", args->out, "run directory (default runs/<scene name>/run)");
+  command->add_option("--threads", args->threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--solver", args->solver, "linear solver: pcg (block-Jacobi PCG) or direct (sparse LDLT)")
+      ->check(CLI::IsMember({"pcg", "direct"}));
+  command->add_option("--max-steps", args->max_steps, "stop after this many steps (0: run to the end time)");
+  command->add_flag("--no-vtk", args->no_vtk, "skip the VTU snapshots");
+  command->callback([args] { run_run(*args); });
+}
+
 }  // namespace ddafrac::app

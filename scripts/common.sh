@@ -11,6 +11,7 @@ DDAFRAC_PACKAGES=(
   libeigen3-dev libgmsh-dev libboost-test-dev
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libfmt-dev libcairo2-dev
   libdeal.ii-dev openmpi-bin
+  python3-matplotlib
 )
 
 ddafrac_install_dependencies() {

@@ -326,7 +326,7 @@ std::string Problem::to_string() const {
 
 SceneError::SceneError(std::vector<Problem> problems)
     : std::runtime_error([&] {
-        std::string text = fmt::format("the scene has {} problem{}:", problems.size(), problems.size() == 1 ? "" : "s");
+        std::string text = fmt::format("{} problem{} found:", problems.size(), problems.size() == 1 ? "" : "s");
         for (const Problem& p : problems) text += "\n  " + p.to_string();
         return text;
       }()),

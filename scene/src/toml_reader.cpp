@@ -274,6 +274,28 @@ std::optional<std::vector<double>> TableReader::numbers(std::string_view key, co
   return out;
 }
 
+std::optional<std::vector<std::string>> TableReader::strings(std::string_view key, const std::string& what,
+                                                             Need need) {
+  const std::string expected = "an array of strings (" + what + ")";
+  const toml::node* node = find(key, need, expected);
+  if (!node) return std::nullopt;
+  const auto* array = node->as_array();
+  if (!array) {
+    wrong_type(key, *node, expected);
+    return std::nullopt;
+  }
+  std::vector<std::string> out;
+  for (const toml::node& element : *array) {
+    const auto* s = element.as_string();
+    if (!s) {
+      wrong_type(key, element, expected);
+      return std::nullopt;
+    }
+    out.push_back(s->get());
+  }
+  return out;
+}
+
 TableReader TableReader::table(std::string_view key, Need need) {
   asked_.emplace(key);
   const toml::node* node = table_ ? table_->get(key) : nullptr;

@@ -72,6 +72,8 @@ class TableReader {
                                        std::string_view what, Need need);
   std::optional<std::array<double, 2>> vec2(std::string_view key, const std::string& unit, Need need);
   std::optional<std::vector<double>> numbers(std::string_view key, const NumberRule& rule, Need need);
+  /// An array of strings; `what` says what each string is, for messages.
+  std::optional<std::vector<std::string>> strings(std::string_view key, const std::string& what, Need need);
 
   /// A sub-table; a missing optional one gives a reader over nothing.
   TableReader table(std::string_view key, Need need);

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "ddafrac/scene/parse.hpp"
+#include "ddafrac/scene/sweep.hpp"
 
 using namespace ddafrac;
 namespace fs = std::filesystem;
@@ -19,7 +20,9 @@ const fs::path kScenes = fs::path(DDAFRAC_SOURCE_DIR) / "scenes";
 BOOST_AUTO_TEST_CASE(every_scene_file_parses) {
   int parsed = 0;
   for (const auto& entry : fs::recursive_directory_iterator(kScenes)) {
-    if (entry.path().extension() != ".toml" || entry.path().filename().string().rfind("common_", 0) == 0) continue;
+    const std::string name = entry.path().filename().string();
+    const bool sweep = name.size() > 11 && name.compare(name.size() - 11, 11, ".sweep.toml") == 0;
+    if (entry.path().extension() != ".toml" || name.rfind("common_", 0) == 0 || sweep) continue;
     BOOST_TEST_CONTEXT(entry.path().string()) {
       BOOST_CHECK_NO_THROW(scene::load_scene(entry.path()));
     }
@@ -68,4 +71,12 @@ BOOST_AUTO_TEST_CASE(brazilian_scenes_match_the_study) {
     BOOST_TEST(std::abs(g.slit->inclination - angle * kDegree) < 1e-12);
     BOOST_TEST(s.mesh.target_blocks == 4000);
   }
+}
+
+BOOST_AUTO_TEST_CASE(impact_sweep_lists_the_fifteen_cases) {
+  const scene::Sweep sweep = scene::load_sweep(kScenes / "impact" / "cases.sweep.toml");
+  BOOST_TEST(sweep.cases.size() == 15u);
+  BOOST_TEST(sweep.crack_time == 1.8e-3);
+  BOOST_TEST(sweep.threads == 1);
+  for (const auto& file : sweep.cases) BOOST_TEST(fs::exists(file));
 }

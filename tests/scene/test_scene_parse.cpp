@@ -10,6 +10,7 @@
 #include <string>
 
 #include "ddafrac/scene/parse.hpp"
+#include "ddafrac/scene/sweep.hpp"
 
 using namespace ddafrac;
 
@@ -354,5 +355,30 @@ BOOST_AUTO_TEST_CASE(overrides_replace_values_before_validation) {
     BOOST_FAIL("accepted");
   } catch (const scene::SceneError& e) {
     BOOST_TEST(std::string(e.what()).find("expected key=value") != std::string::npos);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(bad_sweep_file_reports_every_problem) {
+  const auto path = write_temp("sweep.toml", "cases = [\"missing.toml\", 3]\ncrack_tim = 1e-3\n");
+  try {
+    scene::load_sweep(path);
+    BOOST_FAIL("accepted");
+  } catch (const scene::SceneError& e) {
+    const auto& p = e.problems();
+    BOOST_TEST_REQUIRE(p.size() == 3u);
+    BOOST_TEST(p[0].key == "crack_time");  // missing
+    BOOST_TEST(p[1].key == "cases");
+    BOOST_TEST(p[1].line == 1);
+    BOOST_TEST(p[1].message.find("got a number") != std::string::npos);
+    BOOST_TEST(p[2].message.find("did you mean \"crack_time\"") != std::string::npos);
+  }
+  write_temp("one.toml", kValid);
+  const auto missing = write_temp("sweep2.toml", "cases = [\"one.toml\", \"two.toml\"]\ncrack_time = 1e-3\n");
+  try {
+    scene::load_sweep(missing);
+    BOOST_FAIL("accepted");
+  } catch (const scene::SceneError& e) {
+    BOOST_TEST_REQUIRE(e.problems().size() == 1u);
+    BOOST_TEST(e.problems()[0].message.find("two.toml") != std::string::npos);
   }
 }

@@ -21,7 +21,7 @@ struct Problem {
   std::string to_string() const;  // "file:line:column: key: message"
 };
 
-/// Thrown when a scene has problems; what() lists all of them, one per line.
+/// Thrown when a scene (or sweep) file has problems; what() lists all of them, one per line.
 class SceneError : public std::runtime_error {
  public:
   explicit SceneError(std::vector<Problem> problems);

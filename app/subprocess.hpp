@@ -1,0 +1,30 @@
+#pragma once
+// Starting and waiting for child processes (sweep runs, the plotting script).
+
+#include <sys/types.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace ddafrac::app {
+
+/// Starts `argv` (argv[0] is the program path) with stdout and stderr appended to `log`
+/// (or inherited if `log` is empty). Throws std::runtime_error if it cannot start.
+pid_t spawn_process(const std::vector<std::string>& argv, const std::filesystem::path& log = {});
+
+struct Finished {
+  pid_t pid = 0;
+  int exit_code = 0;  // 128 + signal number if it was killed
+};
+
+/// Waits for any child to finish.
+Finished wait_for_any_child();
+
+/// Runs `argv` to completion; returns its exit code.
+int run_process(const std::vector<std::string>& argv, const std::filesystem::path& log = {});
+
+/// The path of the running executable (for starting more of itself).
+std::filesystem::path own_executable();
+
+}  // namespace ddafrac::app

@@ -1,0 +1,219 @@
+// `ddafrac sweep SWEEP.toml [--out DIR] [--parallel N] [--set key=value ...]`: runs every case
+// of a sweep (each as its own `ddafrac run` process, several at once when the cores allow) and
+// writes one table of the cases with their crack counts and run times, plus comparison plots.
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "commands.hpp"
+#include "ddafrac/common/whole_file.hpp"
+#include "ddafrac/scene/parse.hpp"
+#include "ddafrac/scene/sweep.hpp"
+#include "figures.hpp"
+#include "subprocess.hpp"
+
+namespace ddafrac::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;  // rad per degree
+
+struct SweepArguments {
+  std::string sweep_file;
+  std::string out;
+  int parallel = 0;
+  std::vector<std::string> overrides;
+};
+
+/// One case: its scene (validated before anything runs) and, once run, its results.
+struct Case {
+  fs::path scene_file;
+  scene::Scene scene;
+  fs::path run_dir;
+  int exit_code = -1;
+  double wall_seconds = 0.0;
+  std::optional<std::array<double, 3>> cracks;  // total, tensile, shear at the sweep's crack time
+};
+
+/// The impact parameters of a case (θ in degrees, γ, v0 in m/s), if it is an impact scene.
+std::string impact_columns(const scene::Scene& s) {
+  const auto* impact = std::get_if<meshes::ImpactDisc>(&s.geometry);
+  const scene::Body* disc = s.find_body("disc");
+  if (!impact || !disc) return ",,";
+  const double v0 = std::hypot(disc->initial_velocity[0], disc->initial_velocity[1]);
+  return fmt::format("{:g},{:g},{:g}", impact->joint_angle / kDegree, impact->connectivity, v0);
+}
+
+/// Crack counts at time t from a run's history.csv: the last row at or before t.
+std::optional<std::array<double, 3>> cracks_at(const fs::path& history, double t) {
+  std::ifstream in(history);
+  std::string line;
+  if (!std::getline(in, line)) return std::nullopt;
+  std::map<std::string, std::size_t> column;
+  {
+    std::stringstream header(line);
+    std::string name;
+    for (std::size_t i = 0; std::getline(header, name, ','); ++i) column[name] = i;
+  }
+  for (const char* key : {"t", "cracks_total", "cracks_tensile", "cracks_shear"})
+    if (!column.count(key)) return std::nullopt;
+  constexpr double kTimeSlack = 1e-9;  // relative
+  std::optional<std::array<double, 3>> found;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    if (cells.size() < column.size()) break;
+    if (std::stod(cells[column["t"]]) > t * (1 + kTimeSlack)) break;
+    found = {std::stod(cells[column["cracks_total"]]), std::stod(cells[column["cracks_tensile"]]),
+             std::stod(cells[column["cracks_shear"]])};
+  }
+  return found;
+}
+
+std::vector<Case> load_cases(const scene::Sweep& sweep, const std::vector<std::string>& overrides, const fs::path& out) {
+  std::vector<Case> cases;
+  std::string problems;
+  for (const fs::path& file : sweep.cases) {
+    try {
+      Case c;
+      c.scene_file = file;
+      c.scene = scene::load_scene(file, overrides);
+      c.run_dir = out / c.scene.name;
+      cases.push_back(std::move(c));
+    } catch (const scene::SceneError& e) {
+      problems += fmt::format("\n{}: {}", file.string(), e.what());
+    }
+  }
+  if (!problems.empty()) throw CommandFailed("the sweep's cases have problems (nothing was run):" + problems);
+  return cases;
+}
+
+std::vector<std::string> run_arguments(const Case& c, const scene::Sweep& sweep, const std::vector<std::string>& overrides) {
+  std::vector<std::string> argv{own_executable().string(), "run", c.scene_file.string(), "--out", c.run_dir.string(),
+                                "--threads", std::to_string(sweep.threads)};
+  for (const std::string& o : overrides) {
+    argv.push_back("--set");
+    argv.push_back(o);
+  }
+  return argv;
+}
+
+/// Runs the cases, `parallel` at a time, and records exit codes and wall times.
+void run_cases(std::vector<Case>& cases, const scene::Sweep& sweep, const std::vector<std::string>& overrides,
+               int parallel) {
+  std::map<pid_t, std::pair<std::size_t, Clock::time_point>> running;
+  std::size_t next = 0, done = 0;
+  while (done < cases.size()) {
+    while (next < cases.size() && static_cast<int>(running.size()) < parallel) {
+      Case& c = cases[next];
+      fs::create_directories(c.run_dir);
+      const fs::path log = c.run_dir / "run.log";
+      fs::remove(log);
+      running[spawn_process(run_arguments(c, sweep, overrides), log)] = {next, Clock::now()};
+      fmt::print("started  {} ({})\n", c.scene.name, c.scene_file.string());
+      ++next;
+    }
+    const Finished finished = wait_for_any_child();
+    const auto it = running.find(finished.pid);
+    if (it == running.end()) continue;
+    Case& c = cases[it->second.first];
+    c.exit_code = finished.exit_code;
+    c.wall_seconds = std::chrono::duration<double>(Clock::now() - it->second.second).count();
+    running.erase(it);
+    ++done;
+    fmt::print("[{}/{}] {} {} in {:.1f} s{}\n", done, cases.size(), c.scene.name,
+               c.exit_code == 0 ? "finished" : "FAILED", c.wall_seconds,
+               c.exit_code == 0 ? "" : fmt::format(" (exit status {}; see {})", c.exit_code, (c.run_dir / "run.log").string()));
+    std::fflush(stdout);
+  }
+}
+
+std::string table_csv(const std::vector<Case>& cases, const fs::path& out) {
+  std::string csv = "case,scene,theta_deg,gamma,v0,cracks_total,cracks_tensile,cracks_shear,run_time_s,exit_status,run_dir\n";
+  for (const Case& c : cases) {
+    const std::string cracks =
+        c.cracks ? fmt::format("{:g},{:g},{:g}", (*c.cracks)[0], (*c.cracks)[1], (*c.cracks)[2]) : ",,";
+    csv += fmt::format("{},{},{},{},{:.3f},{},{}\n", c.scene.name, c.scene_file.string(), impact_columns(c.scene), cracks,
+                       c.wall_seconds, c.exit_code, fs::relative(c.run_dir, out).string());
+  }
+  return csv;
+}
+
+void print_table(const std::vector<Case>& cases, double crack_time) {
+  fmt::print("\n{:<18} {:>7} {:>6} {:>6} {:>8} {:>8} {:>8} {:>9}\n", "case", "θ (°)", "γ", "v0", "cracks", "tensile",
+             "shear", "time (s)");
+  fmt::print("{:<18} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8}\n", "", "", "", "m/s",
+             fmt::format("@{:g}µs", crack_time * 1e6), "", "");
+  for (const Case& c : cases) {
+    std::string columns = impact_columns(c.scene);
+    std::replace(columns.begin(), columns.end(), ',', ' ');
+    std::stringstream parts(columns);
+    std::string theta, gamma, v0;
+    parts >> theta >> gamma >> v0;
+    const auto count = [&](int i) { return c.cracks ? fmt::format("{:g}", (*c.cracks)[i]) : std::string("-"); };
+    fmt::print("{:<18} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>9.1f}\n", c.scene.name, theta, gamma, v0, count(0),
+               count(1), count(2), c.wall_seconds);
+  }
+}
+
+void run_sweep(const SweepArguments& args) {
+  scene::Sweep sweep;
+  try {
+    sweep = scene::load_sweep(args.sweep_file);
+  } catch (const scene::SceneError& e) {
+    throw CommandFailed(e.what());
+  }
+  std::vector<std::string> overrides = sweep.overrides;
+  overrides.insert(overrides.end(), args.overrides.begin(), args.overrides.end());
+  const fs::path out = args.out.empty() ? fs::path("runs") / sweep.name : fs::path(args.out);
+  std::vector<Case> cases = load_cases(sweep, overrides, out);
+
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int parallel = args.parallel > 0 ? args.parallel
+                       : sweep.parallel > 0 ? sweep.parallel
+                                            : std::max(1, cores / sweep.threads);
+  fmt::print("sweep {}: {} cases, {} at a time, {} thread(s) each, into {}\n", sweep.name, cases.size(), parallel,
+             sweep.threads, out.string());
+  fs::create_directories(out);
+  run_cases(cases, sweep, overrides, parallel);
+
+  for (Case& c : cases) c.cracks = cracks_at(c.run_dir / "history.csv", sweep.crack_time);
+  const fs::path table = out / "sweep.csv";
+  common::write_whole_text(table, table_csv(cases, out));
+  print_table(cases, sweep.crack_time);
+  fmt::print("\nwrote {}\n", table.string());
+  draw_figures({"sweep", table.string(), "--out", (out / "figures").string()});
+
+  const auto failed = std::count_if(cases.begin(), cases.end(), [](const Case& c) { return c.exit_code != 0; });
+  if (failed > 0) throw CommandFailed(fmt::format("{} of {} cases failed (see their run.log)", failed, cases.size()));
+}
+
+}  // namespace
+
+void register_sweep_command(CLI::App& app) {
+  auto args = std::make_shared<SweepArguments>();
+  CLI::App* command = app.add_subcommand("sweep", "run a set of cases (a sweep file) and tabulate their cracks");
+  command->add_option("sweep", args->sweep_file, "sweep file (TOML), e.g. scenes/impact/cases.sweep.toml")->required();
+  command->add_option("--out", args->out, "output directory (default runs/<sweep name>)");
+  command->add_option("--parallel", args->parallel, "runs at once (default: cores / threads per run)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--set", args->overrides, "override a value of every case, e.g. --set mesh.blocks=1200")
+      ->type_name("KEY=VALUE");
+  command->callback([args] { run_sweep(*args); });
+}
+
+}  // namespace ddafrac::app

@@ -1,0 +1,262 @@
+#!/usr/bin/python3
+"""Figures of ddafrac run directories, drawn with matplotlib.
+
+ddafrac calls this after a run; it can also be run by hand to redraw or restyle figures:
+
+    ddafrac_plots.py run RUN_DIR [--times T1,T2,...] [--crack-interval S]
+    ddafrac_plots.py sweep TABLE.csv --out DIR
+
+It reads only the files a run writes (history.csv, gauges.csv, cracks.csv, vtk/run.pvd and the
+snapshots it lists, summary.json) and writes PNG files into RUN_DIR/figures/, each whole
+(temporary name, then rename).
+"""
+
+import argparse
+import csv
+import json
+import os
+import sys
+import xml.etree.ElementTree as ET
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
+
+MICROSECONDS = 1e6  # µs per s
+MEGAPASCAL = 1e-6  # MPa per Pa
+DPI = 150
+VTK_LINE = 3
+CRACK_COLOURS = {1: "black", 2: "tab:blue"}  # crack_type 1 = tensile, 2 = shear
+CRACK_NAMES = {1: "tensile", 2: "shear"}
+
+
+def fail(message):
+    print(f"ddafrac_plots: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+def read_columns(path):
+    """A CSV file with a header row as a dict of column name -> list of strings."""
+    with open(path, newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    if not rows:
+        return {}
+    return {key: [row[key] for row in rows] for key in rows[0]}
+
+
+def numbers(columns, key):
+    return np.array([float(v) for v in columns[key]])
+
+
+def save(figure, path):
+    """Writes the figure whole: a temporary name, then rename."""
+    temporary = os.path.join(os.path.dirname(path), "." + os.path.basename(path) + ".partial.png")
+    figure.savefig(temporary, dpi=DPI, bbox_inches="tight")
+    plt.close(figure)
+    os.replace(temporary, path)
+    print(f"wrote {path}")
+
+
+def plot_energy(history, out_dir, title):
+    t = numbers(history, "t") * MICROSECONDS
+    figure, axes = plt.subplots(figsize=(7, 4))
+    for key, label in (("kinetic_energy", "kinetic"), ("strain_energy", "strain"), ("contact_energy", "contact springs")):
+        if key in history:
+            axes.plot(t, numbers(history, key), label=label)
+    axes.set_xlabel("time (µs)")
+    axes.set_ylabel("energy (J per m thickness)")
+    axes.set_title(f"{title}: energies")
+    axes.grid(alpha=0.3)
+    axes.legend()
+    save(figure, os.path.join(out_dir, "energy.png"))
+
+
+def plot_crack_counts(history, crack_interval, out_dir, title):
+    """Cumulative counts over time and the number of new cracks per interval."""
+    t = numbers(history, "t")
+    kinds = [k for k in ("cracks_total", "cracks_tensile", "cracks_shear") if k in history]
+    figure, (cumulative, incremental) = plt.subplots(1, 2, figsize=(11, 4))
+    edges = np.arange(0.0, t[-1] + crack_interval, crack_interval)
+    width = crack_interval * MICROSECONDS / (len(kinds) + 1)
+    for i, key in enumerate(kinds):
+        counts = numbers(history, key)
+        label = key.replace("cracks_", "")
+        cumulative.plot(t * MICROSECONDS, counts, label=label)
+        at_edges = np.interp(edges, t, counts, left=0.0)
+        incremental.bar(edges[1:] * MICROSECONDS - crack_interval * MICROSECONDS + (i + 0.5) * width,
+                        np.diff(at_edges), width=width, label=label, align="edge")
+    cumulative.set_xlabel("time (µs)")
+    cumulative.set_ylabel("cracks (broken virtual joints)")
+    cumulative.set_title(f"{title}: cumulative cracks")
+    incremental.set_xlabel("time (µs)")
+    incremental.set_ylabel(f"new cracks per {crack_interval * MICROSECONDS:g} µs")
+    incremental.set_title("incremental cracks")
+    for axes in (cumulative, incremental):
+        axes.grid(alpha=0.3)
+        axes.legend()
+    save(figure, os.path.join(out_dir, "crack_counts.png"))
+
+
+def plot_gauges(gauges, out_dir, title):
+    t = numbers(gauges, "t") * MICROSECONDS
+    sigma1 = numbers(gauges, "sigma1") * MEGAPASCAL
+    names = gauges["gauge"]
+    figure, axes = plt.subplots(figsize=(8, 4.5))
+    for name in dict.fromkeys(names):  # in first-seen order
+        mask = np.array([n == name for n in names])
+        axes.plot(t[mask], sigma1[mask], label=name)
+    axes.set_xlabel("time (µs)")
+    axes.set_ylabel("σ1 (MPa, tension positive)")
+    axes.set_title(f"{title}: maximum principal stress at the gauges")
+    axes.grid(alpha=0.3)
+    axes.legend(ncol=2)
+    save(figure, os.path.join(out_dir, "gauges_sigma1.png"))
+
+
+def read_snapshots(run_dir):
+    """(time, path) of every snapshot listed in vtk/run.pvd."""
+    pvd = os.path.join(run_dir, "vtk", "run.pvd")
+    if not os.path.exists(pvd):
+        return []
+    root = ET.parse(pvd).getroot()
+    return [(float(d.get("timestep")), os.path.join(run_dir, "vtk", os.path.basename(d.get("file"))))
+            for d in root.iter("DataSet")]
+
+
+def read_vtu(path):
+    """Points, cells (lists of point indices), VTK cell types and cell data arrays of an ASCII .vtu."""
+    root = ET.parse(path).getroot()
+    piece = root.find("UnstructuredGrid/Piece")
+
+    def array(parent, name=None):
+        for node in piece.find(parent).iter("DataArray"):
+            if name is None or node.get("Name") == name:
+                components = int(node.get("NumberOfComponents", "1"))
+                values = np.array(node.text.split(), dtype=float)
+                return values.reshape(-1, components) if components > 1 else values
+        return None
+
+    points = array("Points")[:, :2]
+    connectivity = array("Cells", "connectivity").astype(int)
+    offsets = array("Cells", "offsets").astype(int)
+    types = array("Cells", "types").astype(int)
+    starts = np.concatenate(([0], offsets[:-1]))
+    cells = [connectivity[s:e] for s, e in zip(starts, offsets)]
+    data = {node.get("Name"): node for node in piece.find("CellData").iter("DataArray")}
+    cell_data = {name: array("CellData", name) for name in data}
+    return points, cells, types, cell_data
+
+
+def plot_crack_pattern(snapshot_time, path, out_dir, title):
+    """Blocks coloured by σ1 with the broken joints drawn over them."""
+    points, cells, types, cell_data = read_vtu(path)
+    polygons = [points[c] for c, k in zip(cells, types) if k != VTK_LINE]
+    polygon_index = [i for i, k in enumerate(types) if k != VTK_LINE]
+    sigma1 = cell_data["sigma1"][polygon_index] * MEGAPASCAL
+    figure, axes = plt.subplots(figsize=(7, 7))
+    limit = max(1e-12, np.percentile(np.abs(sigma1), 99))
+    collection = PolyCollection(polygons, array=sigma1, cmap="RdBu_r", clim=(-limit, limit),
+                                edgecolors="face", linewidths=0.2)
+    axes.add_collection(collection)
+    figure.colorbar(collection, ax=axes, shrink=0.8, label="σ1 (MPa, tension positive)")
+    crack_index = [i for i, k in enumerate(types) if k == VTK_LINE]
+    if crack_index:
+        kinds = cell_data.get("crack_type")
+        for kind, colour in CRACK_COLOURS.items():
+            segments = [points[cells[i]] for i in crack_index if kinds is None or int(kinds[i]) == kind]
+            if segments:
+                axes.add_collection(LineCollection(segments, colors=colour, linewidths=1.2,
+                                                   label=f"{CRACK_NAMES[kind]} ({len(segments)})"))
+        axes.legend(loc="upper right")
+    axes.autoscale_view()
+    axes.set_aspect("equal")
+    axes.set_xlabel("x (m)")
+    axes.set_ylabel("y (m)")
+    axes.set_title(f"{title}: cracks over σ1 at t = {snapshot_time * MICROSECONDS:.0f} µs")
+    save(figure, os.path.join(out_dir, f"crack_pattern_{snapshot_time * MICROSECONDS:06.0f}us.png"))
+
+
+def draw_run(args):
+    run_dir = args.run_dir
+    history_path = os.path.join(run_dir, "history.csv")
+    if not os.path.exists(history_path):
+        fail(f"{history_path}: no such file (is {run_dir} a ddafrac run directory?)")
+    out_dir = os.path.join(run_dir, "figures")
+    os.makedirs(out_dir, exist_ok=True)
+    title = os.path.basename(os.path.normpath(run_dir))
+    summary_path = os.path.join(run_dir, "summary.json")
+    if os.path.exists(summary_path):
+        with open(summary_path) as handle:
+            title = json.load(handle).get("scene", {}).get("name", title)
+
+    history = read_columns(history_path)
+    if not history:
+        fail(f"{history_path}: no rows")
+    plot_energy(history, out_dir, title)
+    if "cracks_total" in history:
+        plot_crack_counts(history, args.crack_interval, out_dir, title)
+    gauges_path = os.path.join(run_dir, "gauges.csv")
+    if os.path.exists(gauges_path):
+        gauges = read_columns(gauges_path)
+        if gauges:
+            plot_gauges(gauges, out_dir, title)
+    snapshots = read_snapshots(run_dir)
+    if snapshots:
+        wanted = [float(t) for t in args.times.split(",") if t] if args.times else [snapshots[-1][0]]
+        for t in wanted:
+            snapshot_time, path = min(snapshots, key=lambda s: abs(s[0] - t))
+            plot_crack_pattern(snapshot_time, path, out_dir, title)
+
+
+def draw_sweep(args):
+    """Cumulative and incremental crack counts of every case of a sweep, on shared axes."""
+    table = read_columns(args.table)
+    if not table:
+        fail(f"{args.table}: no cases")
+    os.makedirs(args.out, exist_ok=True)
+    base = os.path.dirname(os.path.abspath(args.table))
+    figure, (cumulative, incremental) = plt.subplots(1, 2, figsize=(12, 4.5))
+    for case, run_dir in zip(table["case"], table["run_dir"]):
+        history_path = os.path.join(base, run_dir, "history.csv")
+        if not os.path.exists(history_path):
+            continue
+        history = read_columns(history_path)
+        if "cracks_total" not in history:
+            continue
+        t = numbers(history, "t")
+        total = numbers(history, "cracks_total")
+        cumulative.plot(t * MICROSECONDS, total, label=case)
+        edges = np.arange(0.0, t[-1] + args.crack_interval, args.crack_interval)
+        at_edges = np.interp(edges, t, total, left=0.0)
+        incremental.step(edges[1:] * MICROSECONDS, np.diff(at_edges), where="pre", label=case)
+    cumulative.set_title("cumulative cracks")
+    incremental.set_title(f"new cracks per {args.crack_interval * MICROSECONDS:g} µs")
+    for axes in (cumulative, incremental):
+        axes.set_xlabel("time (µs)")
+        axes.grid(alpha=0.3)
+        axes.legend(fontsize="small", ncol=2)
+    save(figure, os.path.join(args.out, "sweep_cracks.png"))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    commands = parser.add_subparsers(dest="command", required=True)
+    run = commands.add_parser("run", help="figures of one run directory")
+    run.add_argument("run_dir")
+    run.add_argument("--times", default="", help="comma-separated times (s) of crack-pattern pictures")
+    run.add_argument("--crack-interval", type=float, default=150e-6, help="bin of incremental crack counts, s")
+    run.set_defaults(draw=draw_run)
+    sweep = commands.add_parser("sweep", help="comparison figures of a sweep table")
+    sweep.add_argument("table")
+    sweep.add_argument("--out", required=True)
+    sweep.add_argument("--crack-interval", type=float, default=150e-6)
+    sweep.set_defaults(draw=draw_sweep)
+    args = parser.parse_args()
+    args.draw(args)
+
+
+if __name__ == "__main__":
+    main()
