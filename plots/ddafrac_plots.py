@@ -117,13 +117,13 @@ def plot_gauges(gauges, out_dir, title):
 
 
 def read_snapshots(run_dir):
-    """(time, path) of every snapshot listed in vtk/run.pvd."""
-    pvd = os.path.join(run_dir, "vtk", "run.pvd")
-    if not os.path.exists(pvd):
-        return []
-    root = ET.parse(pvd).getroot()
-    return [(float(d.get("timestep")), os.path.join(run_dir, "vtk", os.path.basename(d.get("file"))))
-            for d in root.iter("DataSet")]
+    """(time, path) of every snapshot listed in run.pvd (paths in it are relative to it)."""
+    for pvd in (os.path.join(run_dir, "run.pvd"), os.path.join(run_dir, "vtk", "run.pvd")):
+        if os.path.exists(pvd):
+            root = ET.parse(pvd).getroot()
+            return [(float(d.get("timestep")), os.path.join(os.path.dirname(pvd), d.get("file")))
+                    for d in root.iter("DataSet")]
+    return []
 
 
 def read_vtu(path):

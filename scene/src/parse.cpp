@@ -273,13 +273,13 @@ std::vector<Gauge> parse_gauges(std::vector<TableReader> tables, double diameter
   return out;
 }
 
-Output parse_output(TableReader t, double end_time) {
+Output parse_output(TableReader t) {
   Output out;
   out.vtk = t.boolean("vtk", Need::Optional).value_or(out.vtk);
   out.figures = t.boolean("figures", Need::Optional).value_or(out.figures);
   out.crack_interval = t.number("crack_interval", NumberRule::positive("s"), Need::Optional).value_or(out.crack_interval);
-  const NumberRule within_run{0.0, end_time > 0 ? std::optional<double>(end_time) : std::nullopt, false, false, "s"};
-  out.figure_times = t.numbers("figure_times", within_run, Need::Optional).value_or(std::vector<double>{});
+  // Times past the end of a (shortened) run are drawn at the last snapshot, not refused.
+  out.figure_times = t.numbers("figure_times", NumberRule::non_negative("s"), Need::Optional).value_or(std::vector<double>{});
   t.reject_unknown_keys();
   return out;
 }
@@ -312,7 +312,7 @@ Scene parse_document(const toml::table& document, const std::filesystem::path& f
     check_bodies(bodies, scene.bodies, geometry.bodies, "the geometry generator");
 
   scene.gauges = parse_gauges(top.table_array("gauges", Need::Optional), geometry.diameter);
-  scene.output = parse_output(top.table("output", Need::Optional), scene.analysis.end_time);
+  scene.output = parse_output(top.table("output", Need::Optional));
   top.reject_unknown_keys();
   return scene;
 }
