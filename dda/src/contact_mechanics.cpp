@@ -85,7 +85,7 @@ ContactCoefficients contact_coefficients(const Contact& c) {
   return k;
 }
 
-bool judge_contact(Contact& c, const Vec6& dv, const Vec6& de, bool bonded) {
+bool judge_contact(Contact& c, const Vec6& dv, const Vec6& de, bool bonded, double tol) {
   const double d = c.d0 + c.e.dot(dv) + c.g.dot(de);
   const double s = c.s0 + c.es.dot(dv) + c.gs.dot(de);
   const double ds = s - c.s0;
@@ -94,13 +94,13 @@ bool judge_contact(Contact& c, const Vec6& dv, const Vec6& de, bool bonded) {
   if (bonded) {
     next = ContactState::Locked;
     fn = -c.kn * d;
-  } else if (d > 0.0) {
+  } else if (d > (c.trial == ContactState::Open ? 0.0 : tol)) {
     next = ContactState::Open;
   } else {
-    fn = -c.kn * d;
+    fn = std::max(0.0, -c.kn * d);
     if (c.trial == ContactState::Sliding) {
-      next = ds * c.slide_sign < 0.0 ? ContactState::Locked : ContactState::Sliding;
-    } else if (std::abs(c.ks * s) > c.tan_phi * fn) {
+      next = ds * c.slide_sign < -tol ? ContactState::Locked : ContactState::Sliding;
+    } else if (std::abs(c.ks * s) > c.tan_phi * fn + c.ks * tol) {
       next = ContactState::Sliding;
       c.slide_sign = s >= 0.0 ? 1.0 : -1.0;
     } else {

@@ -34,7 +34,12 @@ ContactCoefficients contact_coefficients(const Contact& c);
 
 /// Judges one contact from the solution of its two blocks; returns true if its state changed.
 /// Bonded contacts stay locked (they carry tension; breaking is the fracture check's job).
-bool judge_contact(Contact& c, const Vec6& d_vertex_block, const Vec6& d_edge_block, bool bonded);
+/// `tolerance` (m) is a hysteresis band that keeps contacts sitting exactly at a threshold from
+/// flipping forever: a closed contact opens only beyond +tolerance, a locked one slides only if
+/// its shear exceeds the friction limit by ks·tolerance, a sliding one locks only on a reversal
+/// larger than tolerance.
+bool judge_contact(Contact& c, const Vec6& d_vertex_block, const Vec6& d_edge_block, bool bonded,
+                   double tolerance = 0.0);
 
 /// After the step is accepted: forces, slip and reference point carried to the next step.
 void commit_contact(Contact& c);

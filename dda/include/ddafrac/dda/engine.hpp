@@ -27,6 +27,7 @@ struct EngineOptions {
   int easy_open_close = 2;                // "easy" = converged within this many iterations
   double dt_floor_fraction = 1e-6;        // dt below dt_max·this = numerical trouble
   double mass_damping = 0.0;              // η of C = ηM, 1/s (off by default)
+  double state_tolerance = 1e-4;          // open-close hysteresis / allowed step displacement
   DetectionParams detection;              // search_distance is filled in by the engine
   std::vector<PointLoad> point_loads;     // extra loads (tests, benchmarks)
   std::vector<Anchor> anchors;            // extra fixed/prescribed points
