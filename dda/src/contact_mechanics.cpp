@@ -57,6 +57,8 @@ void linearise_contact(Contact& c, const BlockSystem& s) {
   c.e = ((y3 - y2) * ti.row(0) + (x2 - x3) * ti.row(1)).transpose() / l;
   c.g = ((y1 - y3) * t2.row(0) + (x3 - x1) * t2.row(1) + (y2 - y1) * t3.row(0) + (x1 - x2) * t3.row(1))
             .transpose() / l;
+  // d = N / l: the edge length also varies, ∂l = u·(∂P3 − ∂P2), giving −(d0/l)·∂l.
+  c.g -= (c.d0 / l) * (ux * (t3.row(0) - t2.row(0)) + uy * (t3.row(1) - t2.row(1))).transpose();
   c.es = (ux * ti.row(0) + uy * ti.row(1)).transpose();
   const double w2 = 1.0 - c.ref_t, w3 = c.ref_t;
   c.gs = -(ux * (w2 * t2.row(0) + w3 * t3.row(0)) + uy * (w2 * t2.row(1) + w3 * t3.row(1))).transpose();
