@@ -188,6 +188,7 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
   long next_output = 1;
   double last_progress = -1e300;
   bool snapshot_at_end = false;
+  StepReport last;
   try {
     for (;;) {
       if (o.stop && o.stop->load()) {
@@ -206,6 +207,7 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
       }
       const double t_out = std::min(end, static_cast<double>(next_output) * interval);
       const StepReport rep = engine.step(t_out - engine.time());
+      last = rep;
       if (rep.step % std::max(1, o.history_every) == 0) history += history_row(rep);
       snapshot_at_end = true;
       if (engine.time() >= t_out - kTimeSlack * interval) {
@@ -227,7 +229,7 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
     r.message = ex.what();
   }
   if (o.progress)
-    o.progress({engine.time(), end, st.steps, engine.dt(), 0, 0, omp_get_wtime() - t0});
+    o.progress({engine.time(), end, st.steps, last.dt, last.open_close, last.cg_iterations, omp_get_wtime() - t0});
   write_outputs(snapshot_at_end);
   return r;
 }
