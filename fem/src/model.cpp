@@ -237,6 +237,11 @@ void Model::build_locator() {
     size += nodes.front().distance(nodes.back());
   }
   size /= static_cast<double>(cell_nodes_.size());
+  // One cell size of margin: points on a curved rim may lie beyond the outermost nodes.
+  for (unsigned int d = 0; d < dim; ++d) {
+    lo[d] -= size;
+    hi[d] += size;
+  }
   const double extent = std::max(hi[0] - lo[0], hi[1] - lo[1]);
   grid_n_ = static_cast<unsigned int>(std::clamp(extent / (2.0 * size), 1.0, 2048.0));
   grid_step_ = extent / grid_n_ * (1.0 + 1e-12);

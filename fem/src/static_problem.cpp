@@ -159,7 +159,9 @@ std::vector<StressSample> StaticSolution::profile(double x0, double y0, double x
   std::vector<StressSample> out;
   for (int i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) / (n - 1);
-    out.push_back(stress_at(x0 + t * (x1 - x0), y0 + t * (y1 - y0)));
+    const double x = x0 + t * (x1 - x0), y = y0 + t * (y1 - y0);
+    if (const auto s = impl_->model->stress_at(impl_->u, detail::Point(x, y)))
+      out.push_back(make_sample(x, y, *s));
   }
   return out;
 }

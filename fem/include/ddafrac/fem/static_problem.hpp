@@ -50,7 +50,8 @@ class StaticSolution {
 
   /// Stress at a point of the body (throws FemError outside it).
   StressSample stress_at(double x, double y) const;
-  /// n >= 2 samples from (x0, y0) to (x1, y1), both ends included.
+  /// Up to n >= 2 samples from (x0, y0) to (x1, y1), both ends included; points outside the
+  /// body (e.g. inside a slit) are left out.
   std::vector<StressSample> profile(double x0, double y0, double x1, double y1, int n) const;
   /// Resultant force (N per unit thickness) that the body exerts on the supports or loads of a
   /// boundary group, from the consistent nodal reactions (internal minus external forces).
