@@ -47,7 +47,7 @@ void linearise_contact(Contact& c, const BlockSystem& s) {
   c.edge_length = l;
   c.d0 = (dx * (y2 - y1) - dy * (x2 - x1)) / l;
   const double t_now = ((x1 - x2) * dx + (y1 - y2) * dy) / l2;
-  if (c.state != ContactState::Locked) c.ref_t = t_now;
+  if (c.state == ContactState::Open) c.ref_t = t_now;
   c.s0 = (t_now - c.ref_t) * l;
   const PolygonIntegrals& gi = s.geometry[c.vblock];
   const PolygonIntegrals& gj = s.geometry[c.eblock];
@@ -90,7 +90,6 @@ ContactCoefficients contact_coefficients(const Contact& c) {
 bool judge_contact(Contact& c, const Vec6& dv, const Vec6& de, bool bonded, double tol) {
   const double d = c.d0 + c.e.dot(dv) + c.g.dot(de);
   const double s = c.s0 + c.es.dot(dv) + c.gs.dot(de);
-  const double ds = s - c.s0;
   ContactState next;
   double fn = 0.0;
   if (bonded) {
@@ -100,9 +99,15 @@ bool judge_contact(Contact& c, const Vec6& dv, const Vec6& de, bool bonded, doub
     next = ContactState::Open;
   } else {
     fn = std::max(0.0, -c.kn * d);
+    // Elastic predictor (return mapping) on the shear spring measured from the reference
+    // point: the contact slides while the spring would carry more than the friction limit in the
+    // sliding direction. Judging a sliding contact by the direction of its step increment
+    // instead would lock a contact whose carried shear exceeds a shrinking limit (fn falling)
+    // while it unloads slightly, and the locked solution would send it back to sliding.
+    const double limit = c.tan_phi * fn;
     if (c.trial == ContactState::Sliding) {
-      next = ds * c.slide_sign < -tol ? ContactState::Locked : ContactState::Sliding;
-    } else if (std::abs(c.ks * s) > c.tan_phi * fn + c.ks * tol) {
+      next = c.ks * s * c.slide_sign < limit - c.ks * tol ? ContactState::Locked : ContactState::Sliding;
+    } else if (std::abs(c.ks * s) > limit + c.ks * tol) {
       next = ContactState::Sliding;
       c.slide_sign = s >= 0.0 ? 1.0 : -1.0;
     } else {
@@ -123,10 +128,15 @@ void commit_contact(Contact& c) {
   switch (c.state) {
     case ContactState::Open: c.shear_force = 0.0; break;
     case ContactState::Locked: c.shear_force = c.ks * c.s_iter; break;
-    case ContactState::Sliding:
-      c.shear_force = c.slide_sign * c.tan_phi * c.fn_iter;
-      c.slip += std::abs(c.s_iter - c.s0);
+    case ContactState::Sliding: {
+      // The spring keeps the elastic part at the friction limit; the rest is plastic slip, by
+      // which the reference point moves along the edge.
+      const double elastic = c.slide_sign * c.tan_phi * c.fn_iter / c.ks;
+      c.shear_force = c.ks * elastic;
+      c.slip += std::abs(c.s_iter - elastic);
+      if (c.edge_length > 0.0) c.ref_t += (c.s_iter - elastic) / c.edge_length;
       break;
+    }
   }
 }
 

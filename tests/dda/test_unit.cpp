@@ -153,3 +153,46 @@ BOOST_AUTO_TEST_CASE(pcg_matches_direct_solver) {
                                                << static_cast<double>(a.statistics().cg_total) / a.statistics().solves);
   BOOST_TEST(diff <= 1e-8 * norm);
 }
+
+// Regression (default impact scene, t ≈ 18.8 µs): a locked contact whose carried shear exceeds a
+// friction limit that fell with fn, while the contact unloads slightly. The old rule judged a
+// sliding contact by the direction of its step increment, so it flipped locked -> sliding ->
+// locked until dt underflowed. With the elastic predictor, sliding is a fixed point.
+BOOST_AUTO_TEST_CASE(sliding_is_a_fixed_point_when_the_carried_shear_exceeds_a_falling_limit) {
+  Contact c;
+  c.kn = 3.5e8;
+  c.ks = 1.4e8;
+  c.tan_phi = 0.364;
+  c.state = c.trial = ContactState::Locked;
+  c.d0 = -7.08e-7;
+  c.s0 = -5.11e-7;
+  c.e = Vec6::Zero();
+  c.es = Vec6::Zero();
+  c.g = Vec6::Zero();
+  c.gs = Vec6::Zero();
+  c.e[kU] = 1.0;   // d = d0 + D_v[u]
+  c.es[kV] = 1.0;  // s = s0 + D_v[v]
+  Vec6 dv = Vec6::Zero();
+  dv[kU] = -5.26e-7 - c.d0;  // fn = 184 N/m, limit tanφ·fn = 67 N/m
+  dv[kV] = 1.2e-8;           // unloading: s = -4.99e-7 m, spring 69.9 N/m > limit
+  const Vec6 de = Vec6::Zero();
+  const double tol = 6e-10;
+  BOOST_TEST(judge_contact(c, dv, de, false, tol));
+  BOOST_TEST(static_cast<int>(c.trial) == static_cast<int>(ContactState::Sliding));
+  BOOST_TEST(c.slide_sign == -1.0);
+  // The sliding solution moves on the same way: no further change.
+  BOOST_TEST(!judge_contact(c, dv, de, false, tol));
+  BOOST_TEST(static_cast<int>(c.trial) == static_cast<int>(ContactState::Sliding));
+  // Commit: the elastic part stays at the limit, the reference point takes the plastic slip.
+  c.edge_length = 1e-3;
+  const double ref0 = c.ref_t;
+  commit_contact(c);
+  const double elastic = -c.tan_phi * c.normal_force / c.ks;
+  BOOST_TEST(std::abs(c.shear_force + c.tan_phi * c.normal_force) <= 1e-12 * c.tan_phi * c.normal_force);
+  BOOST_TEST(std::abs((c.ref_t - ref0) * c.edge_length - (c.s_iter - elastic)) <= 1e-18);
+  // A real reversal (shear back inside the limit) locks it again.
+  dv[kV] = 4e-7;
+  c.s0 = elastic;
+  BOOST_TEST(judge_contact(c, dv, de, false, tol));
+  BOOST_TEST(static_cast<int>(c.trial) == static_cast<int>(ContactState::Locked));
+}

@@ -17,8 +17,8 @@ void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem
                                const scene::Scene& scene, double shear_ratio);
 
 /// Normal gap, shear displacement from the locked reference point, and their gradients with
-/// respect to the unknowns of both blocks, from the current geometry. Contacts that are not
-/// locked move their reference point to the current projection (s0 = 0).
+/// respect to the unknowns of both blocks, from the current geometry. Open contacts
+/// move their reference point to the current projection (s0 = 0).
 void linearise_contact(Contact& c, const BlockSystem& blocks);
 
 /// Exact (nonlinear) normal gap of a vertex against an edge, positive when the vertex is
@@ -34,14 +34,18 @@ ContactCoefficients contact_coefficients(const Contact& c);
 
 /// Judges one contact from the solution of its two blocks; returns true if its state changed.
 /// Bonded contacts stay locked (they carry tension; breaking is the fracture check's job).
+/// Shear is an elastic-plastic spring measured from the reference point (return mapping): a
+/// closed contact slides while ks·|s| exceeds tanφ·fn, in the direction of s; a sliding contact
+/// keeps its elastic part at the limit and its reference point follows the plastic slip.
 /// `tolerance` (m) is a hysteresis band that keeps contacts sitting exactly at a threshold from
 /// flipping forever: a closed contact opens only beyond +tolerance, a locked one slides only if
-/// its shear exceeds the friction limit by ks·tolerance, a sliding one locks only on a reversal
-/// larger than tolerance.
+/// its shear exceeds the friction limit by ks·tolerance, a sliding one locks only when its
+/// shear in the sliding direction falls below the limit by ks·tolerance.
 bool judge_contact(Contact& c, const Vec6& d_vertex_block, const Vec6& d_edge_block, bool bonded,
                    double tolerance = 0.0);
 
-/// After the step is accepted: forces, slip and reference point carried to the next step.
+/// After the step is accepted: forces, slip and reference point carried to the next step (a
+/// sliding contact's reference point moves by its plastic slip).
 void commit_contact(Contact& c);
 
 }  // namespace ddafrac::dda
