@@ -12,7 +12,6 @@
 #include "ddafrac/meshes/generate.hpp"
 #include "ddafrac/meshes/msh_io.hpp"
 #include "ddafrac/meshes/picture.hpp"
-#include "ddafrac/scene/parse.hpp"
 #include "scene_source.hpp"
 
 namespace ddafrac::app {
@@ -37,32 +36,19 @@ void run_mesh(const MeshArguments& args) {
   std::filesystem::create_directories(out);
 
   using Clock = std::chrono::steady_clock;
-  try {
-    const auto start = Clock::now();
-    meshes::QualityReport quality;
-    meshes::Mesh dda;
-    const auto* user_file = std::get_if<meshes::MshFile>(&scene.geometry);
-    if (user_file) {
-      dda = meshes::read_msh(user_file->path);
-      try {
-        scene::check_bodies_against_mesh(scene, dda.body_names);
-      } catch (const scene::SceneError& e) {
-        throw CommandFailed(e.what());
-      }
-      quality = meshes::measure_quality(dda);
-    } else {
-      dda = meshes::generate_dda_mesh(scene.geometry, scene.mesh, &quality);
-    }
-    const double dda_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    meshes::write_msh(dda, out / "dda.msh");
-    meshes::write_mesh_png(dda, out / "dda.png");
-    print_quality("DDA mesh", "blocks", quality, dda_seconds);
-    if (!user_file && scene.mesh.target_blocks > 0) {
-      const double off = static_cast<double>(quality.blocks) / scene.mesh.target_blocks - 1.0;
-      fmt::print("          target {} blocks, hit within {:+.1f}%\n", scene.mesh.target_blocks, 100.0 * off);
-    }
+  const auto start = Clock::now();
+  meshes::QualityReport quality;
+  const meshes::Mesh dda = dda_mesh(scene, &quality);
+  const double dda_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  meshes::write_msh(dda, out / "dda.msh");
+  meshes::write_mesh_png(dda, out / "dda.png");
+  print_quality("DDA mesh", "blocks", quality, dda_seconds);
 
-    if (!user_file) {
+  const bool generated = !std::holds_alternative<meshes::MshFile>(scene.geometry);
+  if (generated) {
+    const double off = static_cast<double>(quality.blocks) / scene.mesh.target_blocks - 1.0;
+    fmt::print("          target {} blocks, hit within {:+.1f}%\n", scene.mesh.target_blocks, 100.0 * off);
+    try {
       const auto fem_start = Clock::now();
       meshes::QualityReport fem_quality;
       const auto cells = args.fem_quads ? meshes::FemCells::Quadrilaterals : meshes::FemCells::Triangles;
@@ -70,11 +56,11 @@ void run_mesh(const MeshArguments& args) {
       meshes::write_msh(fem, out / "fem.msh");
       meshes::write_mesh_png(fem, out / "fem.png");
       print_quality("FEM mesh", "cells", fem_quality, std::chrono::duration<double>(Clock::now() - fem_start).count());
+    } catch (const meshes::MeshError& e) {
+      throw CommandFailed(fmt::format("{}: cannot mesh the scene for the FEM: {}", scene.source.string(), e.what()));
     }
-  } catch (const meshes::MeshError& e) {
-    throw CommandFailed(fmt::format("{}: cannot mesh the scene: {}", scene.source.string(), e.what()));
   }
-  fmt::print("wrote {}/{{dda.msh, dda.png{}}}\n", out.string(), std::holds_alternative<meshes::MshFile>(scene.geometry) ? "" : ", fem.msh, fem.png");
+  fmt::print("wrote {}/{{dda.msh, dda.png{}}}\n", out.string(), generated ? ", fem.msh, fem.png" : "");
 }
 
 }  // namespace

@@ -2,7 +2,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <fmt/core.h>
+
 #include "commands.hpp"
+#include "ddafrac/meshes/msh_io.hpp"
 #include "ddafrac/scene/parse.hpp"
 
 namespace ddafrac::app {
@@ -17,6 +20,22 @@ scene::Scene SceneArguments::load() const {
   const std::filesystem::path path = scene_file.empty() ? default_scene_path() : std::filesystem::path(scene_file);
   try {
     return scene::load_scene(path, overrides);
+  } catch (const scene::SceneError& e) {
+    throw CommandFailed(e.what());
+  }
+}
+
+meshes::Mesh dda_mesh(const scene::Scene& scene, meshes::QualityReport* quality) {
+  try {
+    if (const auto* file = std::get_if<meshes::MshFile>(&scene.geometry)) {
+      meshes::Mesh mesh = meshes::read_msh(file->path);
+      scene::check_bodies_against_mesh(scene, mesh.body_names);
+      if (quality) *quality = meshes::measure_quality(mesh);
+      return mesh;
+    }
+    return meshes::generate_dda_mesh(scene.geometry, scene.mesh, quality);
+  } catch (const meshes::MeshError& e) {
+    throw CommandFailed(fmt::format("{}: cannot mesh the scene: {}", scene.source.string(), e.what()));
   } catch (const scene::SceneError& e) {
     throw CommandFailed(e.what());
   }

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "ddafrac/meshes/generate.hpp"
+#include "ddafrac/meshes/mesh.hpp"
 #include "ddafrac/scene/scene.hpp"
 
 namespace CLI {
@@ -24,6 +26,10 @@ struct SceneArguments {
   /// Loads and validates the scene; a bad scene becomes a CommandFailed listing its problems.
   scene::Scene load() const;
 };
+
+/// The scene's DDA mesh: generated, or read from the user's .msh and checked against the
+/// scene's bodies. Problems become a CommandFailed naming the scene file.
+meshes::Mesh dda_mesh(const scene::Scene& scene, meshes::QualityReport* quality = nullptr);
 
 /// The scene used when none is named: scenes/default.toml of the source tree.
 std::filesystem::path default_scene_path();
