@@ -66,6 +66,13 @@ fem::Material material_of(const scene::Scene& s) {
   return out;
 }
 
+/// Under mpirun every rank computes; rank 0 alone writes the run directory and prints.
+bool is_root() { return fem::Environment::rank() == 0; }
+
+void write_output(const std::filesystem::path& path, const std::string& text) {
+  if (is_root()) common::write_whole_text(path, text);
+}
+
 std::string sample_row(const std::string& label, double t, const fem::StressSample& s) {
   return fmt::format("{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", t, label, s.stress.xx,
                      s.stress.yy, s.stress.xy, s.s1, s.s3);
@@ -111,11 +118,11 @@ nlohmann::json run_static(const FemArguments& args, const scene::Scene& s, meshe
       profiles << fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", name, p.x,
                               p.y, p.stress.xx, p.stress.yy, p.stress.xy, p.s1, p.s3);
   }
-  common::write_whole_text(out / "profiles.csv", profiles.str());
+  write_output(out / "profiles.csv", profiles.str());
   std::string gauges = gauge_header;
   for (const auto& g : s.gauges)
     gauges += sample_row(g.name, 0.0, solution.stress_at(g.position[0], g.position[1]));
-  common::write_whole_text(out / "gauges.csv", gauges);
+  write_output(out / "gauges.csv", gauges);
   solution.write_vtu(out / "stress.vtu");
   nlohmann::json summary{{"kind", "static"}, {"load", load}, {"stats", stats_json(solution.stats())}};
   const auto centre = solution.profile(0.0, 0.0, 0.0, 0.0, 2);  // empty inside a slit
@@ -139,10 +146,10 @@ nlohmann::json run_dynamic(const FemArguments& args, const scene::Scene& s, mesh
   const auto result = fem::run_dynamic(problem);
   std::string gauges = gauge_header;
   for (const auto& g : result.gauges) gauges += sample_row(problem.gauges[g.gauge].name, g.t, g.sample);
-  common::write_whole_text(out / "gauges.csv", gauges);
+  write_output(out / "gauges.csv", gauges);
   std::string energy = "t,kinetic,strain\n";
   for (const auto& e : result.energy) energy += fmt::format("{:.9g},{:.9g},{:.9g}\n", e.t, e.kinetic, e.strain);
-  common::write_whole_text(out / "energy.csv", energy);
+  write_output(out / "energy.csv", energy);
   return {{"kind", "dynamic"}, {"v0", problem.v0}, {"dt", problem.dt}, {"end_time", problem.end_time},
           {"steps", result.steps}, {"newmark", {{"beta", problem.newmark.beta}, {"gamma", problem.newmark.gamma}}},
           {"stats", stats_json(result.stats)}};
@@ -156,7 +163,7 @@ void run_fem(const FemArguments& args) {
   const fem::Environment environment(argc, argv);
   const scene::Scene s = args.scene.load();
   const auto out = output_directory(args.out, s, "fem");
-  std::filesystem::create_directories(out);
+  if (is_root()) std::filesystem::create_directories(out);
   const auto start = std::chrono::steady_clock::now();
   const double size = args.element_size > 0.0 ? args.element_size : diameter_of(s.geometry) / elements_per_diameter;
   meshes::Geometry geometry = s.geometry;
@@ -181,8 +188,9 @@ void run_fem(const FemArguments& args) {
   summary["mpi_ranks"] = fem::Environment::size();
   summary["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary["exit_status"] = "ok";
-  common::write_whole_text(out / "summary.json", summary.dump(2) + "\n");
-  fmt::print("wrote {} ({} dofs, {:.2f} s)\n", out.string(), summary["stats"]["n_dofs"].get<std::size_t>(),
+  write_output(out / "summary.json", summary.dump(2) + "\n");
+  if (is_root())
+    fmt::print("wrote {} ({} dofs, {:.2f} s)\n", out.string(), summary["stats"]["n_dofs"].get<std::size_t>(),
              summary["wall_seconds"].get<double>());
 }
 

@@ -1,5 +1,6 @@
 #include "model.hpp"
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
@@ -8,6 +9,7 @@
 #include <deal.II/grid/grid_reordering.h>
 #include <deal.II/grid/manifold_lib.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/numerics/data_out.h>
@@ -18,6 +20,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+
+#include "ddafrac/common/whole_file.hpp"
 #include <limits>
 
 namespace ddafrac::fem::detail {
@@ -100,7 +104,10 @@ class StressPostprocessor : public dealii::DataPostprocessor<dim> {
 }  // namespace
 
 Model::Model(const meshes::Mesh& mesh, const Material& material, const Discretisation& disc)
-    : material_(material), degree_(disc.degree) {
+    : material_(material),
+      degree_(disc.degree),
+      tria_(MPI_COMM_WORLD, Tria::MeshSmoothing::none, /*allow_artificial_cells=*/false,
+            Tria::Settings::partition_metis) {
   if (degree_ < 1 || degree_ > 2) throw FemError("FEM degree must be 1 or 2");
   // Cells of the disc body (all cells if the mesh names no "disc").
   const auto disc_body = std::find(mesh.body_names.begin(), mesh.body_names.end(), "disc");
@@ -183,6 +190,8 @@ void Model::build_geometry() {
   const unsigned int n_nodes = scalar_fe_->n_dofs_per_cell();
   geometry_.reinit(dof_handler_.n_dofs());
   dof_points_.assign(dof_handler_.n_dofs(), Point());
+  component_.assign(dof_handler_.n_dofs(), 0);
+  sibling_.assign(dof_handler_.n_dofs(), 0);
   cell_nodes_.assign(tria_.n_active_cells(), {});
   cells_.assign(tria_.n_active_cells(), {});
   std::vector<global_dof_index> indices(fe_->n_dofs_per_cell());
@@ -216,6 +225,8 @@ void Model::build_geometry() {
       const auto [component, node] = fe_->system_to_component_index(i);
       geometry_[indices[i]] = nodes[node][component];
       dof_points_[indices[i]] = nodes[node];
+      component_[indices[i]] = component;
+      sibling_[indices[i]] = indices[fe_->component_to_system_index(1 - component, node)];
     }
     cells_[cell->active_cell_index()] = cell;
     cell_nodes_[cell->active_cell_index()] = std::move(nodes);
@@ -339,11 +350,6 @@ BoundaryId Model::require_boundary(const std::string& group) const {
   return *id;
 }
 
-unsigned int Model::dof_component(global_dof_index i) const {
-  // FESystem numbers the components of one support point consecutively (x then y).
-  return static_cast<unsigned int>(i % dim);
-}
-
 std::vector<global_dof_index> Model::boundary_dofs(BoundaryId id, int component) const {
   std::vector<global_dof_index> out;
   std::vector<global_dof_index> face_indices(fe_->n_dofs_per_face());
@@ -362,8 +368,10 @@ std::vector<global_dof_index> Model::boundary_dofs(BoundaryId id, int component)
 }
 
 void Model::make_sparse_matrix(Matrix& matrix, const Constraints& constraints) const {
-  dealii::DynamicSparsityPattern pattern(dof_handler_.n_dofs());
+  const dealii::IndexSet relevant = dealii::DoFTools::extract_locally_relevant_dofs(dof_handler_);
+  dealii::DynamicSparsityPattern pattern(relevant);
   dealii::DoFTools::make_sparsity_pattern(dof_handler_, pattern, constraints, false);
+  dealii::SparsityTools::distribute_sparsity_pattern(pattern, owned_, MPI_COMM_WORLD, relevant);
   matrix.reinit(owned_, owned_, pattern, MPI_COMM_WORLD);
 }
 
@@ -392,6 +400,7 @@ void Model::assemble(const Constraints& constraints, Matrix& stiffness, Matrix* 
   std::vector<double> divergence(n);
   std::vector<dealii::Tensor<1, dim>> shape(n);
   for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
     values.reinit(cell);
     k_local = 0.0;
     m_local = 0.0;
@@ -425,6 +434,7 @@ void Model::assemble(const Constraints& constraints, Matrix& stiffness, Matrix* 
   }
   stiffness.compress(dealii::VectorOperation::add);
   if (mass) mass->compress(dealii::VectorOperation::add);
+  if (rhs) sum_over_ranks(*rhs);
 }
 
 void Model::add_pressure(double pressure, const FaceSelector& selected,
@@ -439,7 +449,9 @@ void Model::add_pressure(double pressure, const FaceSelector& selected,
   const dealii::FEValuesExtractors::Vector displacement(0);
   const unsigned int n = fe_->n_dofs_per_cell();
   std::vector<global_dof_index> indices(n);
-  for (const auto& cell : dof_handler_.active_cell_iterators())
+  dealii::Vector<double> part(rhs.size());
+  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
     for (const unsigned int f : cell->face_indices()) {
       const auto face = cell->face(f);
       if (!face->at_boundary()) continue;
@@ -450,9 +462,12 @@ void Model::add_pressure(double pressure, const FaceSelector& selected,
         if (factor == 0.0) continue;
         const auto traction = -pressure * factor * values.normal_vector(q);
         for (unsigned int i = 0; i < n; ++i)
-          rhs[indices[i]] += (traction * values[displacement].value(i, q)) * values.JxW(q);
+          part[indices[i]] += (traction * values[displacement].value(i, q)) * values.JxW(q);
       }
     }
+  }
+  sum_over_ranks(part);
+  rhs += part;
 }
 
 dealii::Vector<double> Model::internal_force(const dealii::Vector<double>& u) const {
@@ -486,14 +501,25 @@ void Model::write_vtu(const dealii::Vector<double>& u, const std::filesystem::pa
   out.add_data_vector(u, names, dealii::DataOut<dim>::type_dof_data, interpretation);
   const StressPostprocessor stress(lame(material_));
   out.add_data_vector(u, stress);
+  // Every rank holds every cell and the whole of u: rank 0 writes the whole mesh (the default
+  // selection would be its own cells only).
+  using CellIterator = typename dealii::DataOut<dim>::cell_iterator;
+  out.set_cell_selection(
+      [](const dealii::Triangulation<dim>& t) -> CellIterator { return t.begin_active(); },
+      [](const dealii::Triangulation<dim>&, const CellIterator& cell) -> CellIterator {
+        auto next = cell;
+        do ++next;
+        while (next.state() == dealii::IteratorState::valid && !next->is_active());
+        return next;
+      });
+  if (!is_root()) return;
   out.build_patches(*mapping_, static_cast<unsigned int>(degree_));
-  const auto tmp = path.string() + ".tmp";
-  {
+  common::write_whole_file(path, [&](const std::filesystem::path& tmp) {
     std::ofstream file(tmp);
-    if (!file) throw FemError("cannot write " + tmp);
+    if (!file) throw FemError("cannot write " + tmp.string());
     out.write_vtu(file);
-  }
-  std::filesystem::rename(tmp, path);
+    if (!file) throw FemError("cannot write " + tmp.string());
+  });
 }
 
 Vec to_trilinos(const dealii::Vector<double>& v, const Model& model) {
@@ -506,8 +532,18 @@ Vec to_trilinos(const dealii::Vector<double>& v, const Model& model) {
 dealii::Vector<double> to_serial(const Vec& v) {
   dealii::Vector<double> out(v.size());
   for (const auto i : v.locally_owned_elements()) out[i] = v[i];
+  sum_over_ranks(out);
   return out;
 }
+
+void sum_over_ranks(dealii::Vector<double>& v) {
+  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1) return;
+  const dealii::Vector<double> local(v);
+  dealii::Utilities::MPI::sum(dealii::make_array_view(local), MPI_COMM_WORLD,
+                              dealii::make_array_view(v));
+}
+
+bool is_root() { return dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0; }
 
 ElasticSolver::ElasticSolver(const Matrix& matrix, const Model& model,
                              const SolverSettings& settings)

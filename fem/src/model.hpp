@@ -4,6 +4,7 @@
 // FE, DoFs, and the operations both problems need (matrices, loads, stress at points, VTU).
 
 #include <deal.II/base/index_set.h>
+#include <deal.II/distributed/shared_tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_fe_field.h>
@@ -29,7 +30,10 @@
 namespace ddafrac::fem::detail {
 
 constexpr int dim = 2;
-using Tria = dealii::Triangulation<dim>;
+// Every rank holds the whole (small) mesh; cells and DoFs are partitioned among the ranks
+// (METIS), so that assembly and the solver are distributed while point evaluation needs no
+// communication once the solution is gathered. Works with simplices, unlike p4est.
+using Tria = dealii::parallel::shared::Triangulation<dim>;
 using DofHandler = dealii::DoFHandler<dim>;
 using Matrix = dealii::TrilinosWrappers::SparseMatrix;
 using Vec = dealii::TrilinosWrappers::MPI::Vector;
@@ -56,23 +60,29 @@ class Model {
   /// Support-point position of every DoF (component-wise dofs share their node's position).
   const std::vector<Point>& dof_points() const { return dof_points_; }
   /// Component (0 = x, 1 = y) of every DoF.
-  unsigned int dof_component(dealii::types::global_dof_index i) const;
+  unsigned int dof_component(dealii::types::global_dof_index i) const { return component_[i]; }
+  /// The DoF of the other component at the same support point.
+  dealii::types::global_dof_index sibling(dealii::types::global_dof_index i) const {
+    return sibling_[i];
+  }
   /// DoFs (of one component, or both if component < 0) on the faces of a boundary id.
   std::vector<dealii::types::global_dof_index> boundary_dofs(dealii::types::boundary_id id,
                                                              int component) const;
 
   void make_sparse_matrix(Matrix& matrix, const Constraints& constraints) const;
-  /// Stiffness (and consistent mass, if given) with constraints condensed.
-  /// With `rhs`, inhomogeneous constraints add their -K g to it.
+  /// Stiffness (and consistent mass, if given) with constraints condensed, each rank
+  /// assembling its own cells. With `rhs` (a full vector, the same on every rank afterwards),
+  /// inhomogeneous constraints add their -K g to it.
   void assemble(const Constraints& constraints, Matrix& stiffness, Matrix* mass,
                 dealii::Vector<double>* rhs = nullptr) const;
   /// Adds the load of a pressure p (Pa, positive pushes into the body) on boundary faces,
   /// scaled at each face quadrature point by `selected(point, boundary id)` (1 = loaded,
-  /// 0 = free), so that a loaded arc may end inside a face.
+  /// 0 = free), so that a loaded arc may end inside a face. `rhs` is a full vector, the same on
+  /// every rank afterwards.
   using FaceSelector = std::function<double(const Point& point, dealii::types::boundary_id id)>;
   void add_pressure(double pressure, const FaceSelector& selected,
                     dealii::Vector<double>& rhs) const;
-  /// Internal force vector K u (unconstrained, cell by cell).
+  /// Internal force vector K u (unconstrained, cell by cell), full on every rank.
   dealii::Vector<double> internal_force(const dealii::Vector<double>& u) const;
 
   /// Three rigid-body modes (x, y translation, rotation about the origin) as DoF vectors.
@@ -80,8 +90,10 @@ class Model {
 
   Vec make_vector() const { return Vec(owned_, MPI_COMM_WORLD); }
 
-  /// Stress of the displacement field u at a point; nullopt if the point is outside the body.
+  /// Stress of the displacement field u (full vector) at a point; nullopt if the point is
+  /// outside the body. Local: every rank holds every cell and the whole of u.
   std::optional<Stress2> stress_at(const dealii::Vector<double>& u, const Point& p) const;
+  /// All cells, written whole by rank 0 (u full, the same on every rank).
   void write_vtu(const dealii::Vector<double>& u, const std::filesystem::path& path) const;
 
   const dealii::Mapping<dim>& mapping() const { return *mapping_; }
@@ -111,6 +123,8 @@ class Model {
   DofHandler dof_handler_;
   dealii::IndexSet owned_;
   std::vector<Point> dof_points_;
+  std::vector<unsigned int> component_;
+  std::vector<dealii::types::global_dof_index> sibling_;
   // Point location: uniform grid of cell bounding boxes.
   Point grid_origin_;
   double grid_step_ = 0.0;
@@ -135,6 +149,11 @@ class ElasticSolver {
 };
 
 Vec to_trilinos(const dealii::Vector<double>& v, const Model& model);
+/// The whole vector on every rank (gathered).
 dealii::Vector<double> to_serial(const Vec& v);
+/// Sums a full vector over the ranks (each contributed its own cells' part), in place.
+void sum_over_ranks(dealii::Vector<double>& v);
+/// True on the rank that writes files.
+bool is_root();
 
 }  // namespace ddafrac::fem::detail

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "model.hpp"
 
@@ -44,16 +45,24 @@ void remove_rigid_components(const Model& model, dealii::Vector<double>& f) {
 /// Pins the three rigid-body modes: both components of the node nearest the centre, and the
 /// y component of the node farthest from it in x.
 void pin_rigid_modes(const Model& model, detail::Constraints& constraints) {
+  // Ties are broken by position, not by DoF number, so that every partition pins the same nodes.
   const auto& points = model.dof_points();
-  global_dof_index centre = 0, far = 0;
-  for (global_dof_index i = 0; i < points.size(); i += 2) {
-    if (points[i].norm() < points[centre].norm()) centre = i;
+  auto before = [&](global_dof_index a, global_dof_index b, double ka, double kb) {
+    if (ka != kb) return ka < kb;
+    return points[a][0] != points[b][0] ? points[a][0] < points[b][0] : points[a][1] < points[b][1];
+  };
+  std::optional<global_dof_index> centre, far;
+  for (global_dof_index i = 0; i < points.size(); ++i) {
+    if (model.dof_component(i) != 1) continue;
+    if (!centre || before(i, *centre, points[i].norm(), points[*centre].norm())) centre = i;
   }
-  for (global_dof_index i = 0; i < points.size(); i += 2) {
-    if (std::abs(points[i][0] - points[centre][0]) > std::abs(points[far][0] - points[centre][0]))
+  const double xc = points[*centre][0];
+  for (global_dof_index i = 0; i < points.size(); ++i) {
+    if (model.dof_component(i) != 1) continue;
+    if (!far || before(i, *far, -std::abs(points[i][0] - xc), -std::abs(points[*far][0] - xc)))
       far = i;
   }
-  for (const global_dof_index i : {centre, centre + 1, far + 1}) constraints.add_line(i);
+  for (const global_dof_index i : {model.sibling(*centre), *centre, *far}) constraints.add_line(i);
 }
 
 std::array<double, 2> resultant(const Model& model, const dealii::Vector<double>& f) {
@@ -102,11 +111,12 @@ StaticSolution solve_static(const StaticProblem& problem) {
   } else {
     const auto& flat = std::get<FlatLoad>(problem.load);
     const auto bottom = model.boundary_dofs(model.require_boundary("flat_bottom"), 1);
-    global_dof_index pin = bottom.front() - 1;  // x dof of the bottom node nearest x = 0
+    const auto& points = model.dof_points();
+    global_dof_index pin = model.sibling(bottom.front());  // x dof of the bottom node nearest x = 0
     for (const auto i : bottom) {
       constraints.add_line(i);
-      if (std::abs(model.dof_points()[i - 1][0]) < std::abs(model.dof_points()[pin][0]))
-        pin = i - 1;
+      const double xi = std::abs(points[i][0]), xp = std::abs(points[pin][0]);
+      if (xi < xp || (xi == xp && points[i][0] < points[pin][0])) pin = model.sibling(i);
     }
     constraints.add_line(pin);
     if (flat.displacement > 0.0) {
