@@ -3,6 +3,10 @@
 #include <deal.II/base/timer.h>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "ddafrac/common/whole_file.hpp"
 
 #include "model.hpp"
 
@@ -12,6 +16,20 @@ namespace {
 
 // Output times are matched to steps to within this fraction of a step.
 constexpr double step_rounding = 1e-9;
+
+std::string pvd_document(const std::vector<SnapshotRecord>& snapshots) {
+  std::string s =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      "  <Collection>\n";
+  char line[256];
+  for (const auto& snap : snapshots) {
+    std::snprintf(line, sizeof line, "    <DataSet timestep=\"%.17g\" part=\"0\" file=\"%s\"/>\n",
+                  snap.t, snap.file.c_str());
+    s += line;
+  }
+  return s + "  </Collection>\n</VTKFile>\n";
+}
 
 double energy_of(const detail::Matrix& matrix, const detail::Vec& x, detail::Vec& scratch) {
   matrix.vmult(scratch, x);
@@ -65,9 +83,26 @@ DynamicResult run_dynamic(const DynamicProblem& problem) {
     result.energy.push_back({t, energy_of(mass, v, scratch), energy_of(stiffness, u, scratch)});
   };
 
+  const bool snapshots = !problem.snapshot_directory.empty() && problem.snapshot_interval > 0.0;
+  if (snapshots && detail::is_root())
+    std::filesystem::create_directories(problem.snapshot_directory / "vtk");
+  auto snapshot = [&](double t) {
+    char name[64];
+    std::snprintf(name, sizeof name, "vtk/snapshot_%06zu.vtu", result.snapshots.size());
+    result.snapshots.push_back({t, name});
+    const auto displacement = detail::to_serial(u), velocity = detail::to_serial(v);
+    model.write_vtu(displacement, problem.snapshot_directory / name, &velocity);
+    if (detail::is_root())
+      common::write_whole_text(problem.snapshot_directory / "run.pvd",
+                               pvd_document(result.snapshots));
+  };
+
   const auto steps = static_cast<int>(std::ceil(problem.end_time / dt - step_rounding));
   const auto every = std::max(1, static_cast<int>(std::lround(problem.output_interval / dt)));
+  const auto every_snapshot =
+      std::max(1, static_cast<int>(std::lround(problem.snapshot_interval / dt)));
   record(0.0);
+  if (snapshots) snapshot(0.0);
   for (int n = 1; n <= steps; ++n) {
     // M (c_u u + c_v v + c_a a) = (K + c_u M) u_new
     w.equ(c_u, u);
@@ -86,6 +121,7 @@ DynamicResult run_dynamic(const DynamicProblem& problem) {
     a = w;
     u = u_new;
     if (n % every == 0 || n == steps) record(n * dt);
+    if (snapshots && (n % every_snapshot == 0 || n == steps)) snapshot(n * dt);
   }
   result.steps = steps;
   result.stats.solve_seconds = timer.wall_time();

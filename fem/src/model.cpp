@@ -492,13 +492,17 @@ std::array<dealii::Vector<double>, 3> Model::rigid_modes() const {
   return modes;
 }
 
-void Model::write_vtu(const dealii::Vector<double>& u, const std::filesystem::path& path) const {
+void Model::write_vtu(const dealii::Vector<double>& u, const std::filesystem::path& path,
+                      const dealii::Vector<double>* velocity) const {
   dealii::DataOut<dim> out;
   out.attach_dof_handler(dof_handler_);
-  const std::vector<std::string> names(dim, "displacement");
   const std::vector<dealii::DataComponentInterpretation::DataComponentInterpretation>
       interpretation(dim, dealii::DataComponentInterpretation::component_is_part_of_vector);
-  out.add_data_vector(u, names, dealii::DataOut<dim>::type_dof_data, interpretation);
+  out.add_data_vector(u, std::vector<std::string>(dim, "displacement"),
+                      dealii::DataOut<dim>::type_dof_data, interpretation);
+  if (velocity)
+    out.add_data_vector(*velocity, std::vector<std::string>(dim, "velocity"),
+                        dealii::DataOut<dim>::type_dof_data, interpretation);
   const StressPostprocessor stress(lame(material_));
   out.add_data_vector(u, stress);
   // Every rank holds every cell and the whole of u: rank 0 writes the whole mesh (the default

@@ -93,8 +93,10 @@ class Model {
   /// Stress of the displacement field u (full vector) at a point; nullopt if the point is
   /// outside the body. Local: every rank holds every cell and the whole of u.
   std::optional<Stress2> stress_at(const dealii::Vector<double>& u, const Point& p) const;
-  /// All cells, written whole by rank 0 (u full, the same on every rank).
-  void write_vtu(const dealii::Vector<double>& u, const std::filesystem::path& path) const;
+  /// All cells, written whole by rank 0 (u and the optional velocity full, the same on every
+  /// rank).
+  void write_vtu(const dealii::Vector<double>& u, const std::filesystem::path& path,
+                 const dealii::Vector<double>* velocity = nullptr) const;
 
   const dealii::Mapping<dim>& mapping() const { return *mapping_; }
   const dealii::FiniteElement<dim>& fe() const { return *fe_; }

@@ -1,11 +1,13 @@
 // Helper of fem_mpi_test (issue 5, test 5): solves a small static Hondros disc and a short
 // impact response, and rank 0 writes the centre, profile and gauge values to the CSV named on
-// the command line. Run serially and under `mpirun -np 2`; the test compares the two files.
+// the command line, and the impact's VTU snapshots beside it (OUT_vtk/run.pvd). Run serially and
+// under `mpirun -np 2`; the test compares the two.
 
 #include <fmt/core.h>
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -49,7 +51,7 @@ void write_static(bool quads, std::ofstream& out) {
                s.stats().iterations, s.stats().setup_seconds + s.stats().solve_seconds);
 }
 
-void write_dynamic(std::ofstream& out) {
+void write_dynamic(std::ofstream& out, const std::filesystem::path& snapshots) {
   meshes::ImpactDisc g;
   g.diameter = diameter;
   g.joint_angle = 0.0;
@@ -66,6 +68,8 @@ void write_dynamic(std::ofstream& out) {
   for (const double h : {0.003, 0.010, 0.020})
     p.gauges.push_back({fmt::format("h{}", h), 0.0, -0.5 * diameter + h});
   p.gauges.push_back({"off_axis", 0.012, -0.02});
+  p.snapshot_directory = snapshots;
+  p.snapshot_interval = 2e-6;
   const auto r = fem::run_dynamic(p);
   for (const auto& rec : r.gauges) {
     const auto& name = p.gauges[rec.gauge].name;
@@ -94,7 +98,8 @@ int main(int argc, char** argv) {
     out << "case,point,quantity,value\n";
     write_static(false, out);
     write_static(true, out);
-    write_dynamic(out);
+    const std::filesystem::path csv(argv[1]);
+    write_dynamic(out, csv.parent_path() / (csv.stem().string() + "_vtk"));
     if (root && !out) {
       std::fprintf(stderr, "cannot write %s\n", argv[1]);
       return 1;

@@ -13,6 +13,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -34,6 +35,31 @@ Values read_values(const std::filesystem::path& path) {
   while (std::getline(in, line)) {
     const auto last = line.rfind(',');
     out[line.substr(0, last)] = std::stod(line.substr(last + 1));
+  }
+  return out;
+}
+
+/// Snapshot files listed in DIR/run.pvd, and the cell count of each.
+std::vector<std::size_t> snapshot_cells(const std::filesystem::path& dir) {
+  std::ifstream pvd(dir / "run.pvd");
+  BOOST_REQUIRE_MESSAGE(pvd, "no " << (dir / "run.pvd"));
+  std::vector<std::size_t> out;
+  std::string line;
+  const std::string key = "file=\"";
+  while (std::getline(pvd, line)) {
+    const auto at = line.find(key);
+    if (at == std::string::npos) continue;
+    const auto begin = at + key.size();
+    const auto file = dir / line.substr(begin, line.find('"', begin) - begin);
+    std::ifstream vtu(file);
+    BOOST_REQUIRE_MESSAGE(vtu, "run.pvd lists " << file << ", which cannot be read");
+    std::stringstream text;
+    text << vtu.rdbuf();
+    const std::string content = text.str();
+    const std::string cells = "NumberOfCells=\"";
+    const auto c = content.find(cells);
+    BOOST_REQUIRE(c != std::string::npos);
+    out.push_back(std::stoul(content.substr(c + cells.size())));
   }
   return out;
 }
@@ -72,6 +98,12 @@ BOOST_AUTO_TEST_CASE(serial_and_two_ranks_agree) {
     BOOST_TEST(difference < agreement, key << ": serial " << value << ", np 2 " << it->second);
   }
   BOOST_REQUIRE_EQUAL(scale.size(), 4u);  // static_tri, static_quad, dynamic, energy
+
+  // Snapshots at 0, 2, 4, 6 us; under MPI rank 0 writes every cell, not only its own.
+  const auto cells_serial = snapshot_cells(dir / "serial_vtk");
+  const auto cells_np2 = snapshot_cells(dir / "np2_vtk");
+  BOOST_TEST(cells_serial.size() == 4u);
+  BOOST_TEST(cells_np2 == cells_serial, boost::test_tools::per_element());
   for (const auto& [kind, w] : worst)
     BOOST_TEST_MESSAGE(kind << ": largest |serial - np 2| / scale = " << w << " (scale "
                             << scale[kind] << ")");

@@ -3,6 +3,7 @@
 // patch is held (u = 0) from t = 0, launching the impact waves. Newmark time stepping with a
 // selectable (beta, gamma); consistent mass; the effective matrix and AMG are built once.
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,11 @@ struct DynamicProblem {
   double end_time = 20e-6;                   // s
   double output_interval = 1e-7;             // s between gauge/energy samples
   std::vector<GaugePoint> gauges;
+  /// With a directory and an interval > 0: VTU snapshots (displacement, velocity, sxx, syy,
+  /// txy, s1, s3) at t = 0 and every interval, as vtk/snapshot_NNNNNN.vtu, listed in run.pvd
+  /// (rewritten after each snapshot). Files are written whole, by rank 0.
+  std::filesystem::path snapshot_directory;
+  double snapshot_interval = 0.0;  // s
 };
 
 struct GaugeRecord {
@@ -50,8 +56,14 @@ struct EnergyRecord {
   double strain = 0.0;   // J per unit thickness
 };
 
+struct SnapshotRecord {
+  double t = 0.0;    // s
+  std::string file;  // relative to the snapshot directory
+};
+
 struct DynamicResult {
   std::vector<GaugeRecord> gauges;
+  std::vector<SnapshotRecord> snapshots;
   std::vector<EnergyRecord> energy;
   RunStats stats;
   int steps = 0;
