@@ -132,3 +132,11 @@ BOOST_AUTO_TEST_CASE(quads_degree2) {
   BOOST_TEST(order(e[1].loaded, e[2].loaded) > 2.0 - order_margin);
   BOOST_TEST(order(e[1].horizontal, e[2].horizontal) > 2.0 - order_margin);
 }
+
+// The horizontal error of bilinear quads is pre-asymptotic up to k = 2 (order 0.5 from k = 1
+// to 2, then 1.1): the order is asserted on the finest pair only.
+BOOST_AUTO_TEST_CASE(quads_degree1) {
+  const auto e = study(true, 1, 3);
+  BOOST_TEST(order(e[2].loaded, e[3].loaded) > 1.0 - order_margin);
+  BOOST_TEST(order(e[2].horizontal, e[3].horizontal) > 1.0 - order_margin);
+}
