@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/dda/run.hpp"
 #include "ddafrac/dda/synthetic.hpp"
 
@@ -101,8 +102,8 @@ void run_bench(const BenchArguments& a) {
                        r.steps, r.us.total(), r.us.detection, r.us.assembly, r.us.solve, r.us.judgement, r.us.update,
                        r.cg_mean);
   }
-  dda::write_file_atomically(out / "bench.json", j.dump(2) + "\n");
-  dda::write_file_atomically(out / "bench.csv", csv);
+  common::write_whole_text(out / "bench.json", j.dump(2) + "\n");
+  common::write_whole_text(out / "bench.csv", csv);
   fmt::print("wrote {}/{{bench.json, bench.csv}}\n", out.string());
 }
 

@@ -13,6 +13,7 @@
 #include <variant>
 
 #include "commands.hpp"
+#include "figures.hpp"
 #include "ddafrac/dda/run.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "ddafrac/meshes/msh_io.hpp"
@@ -50,6 +51,7 @@ struct RunArguments {
   std::string solver = "pcg";
   long max_steps = 0;
   bool no_vtk = false;
+  bool no_figures = false;
 };
 
 std::string eta_text(double seconds) {
@@ -132,7 +134,25 @@ void run_run(const RunArguments& args) {
              st.cuts_displacement + st.cuts_open_close + st.cuts_solver,
              st.steps ? static_cast<double>(st.open_close_total) / static_cast<double>(st.steps) : 0.0,
              st.solves ? static_cast<double>(st.cg_total) / static_cast<double>(st.solves) : 0.0, st.cg_max);
-  fmt::print("wrote {}/{{summary.json, history.csv{}}}\n", out.string(), ro.vtk ? ", run.pvd, vtk/" : "");
+  const auto& cc = engine->crack_counts();
+  fmt::print("cracks: {} ({} tensile, {} shear)\n", cc.total, cc.tensile, cc.shear);
+  fmt::print("wrote {}/{{summary.json, history.csv, cracks.csv, crack_intervals.csv{}{}{}}}\n", out.string(),
+             scene.gauges.empty() ? "" : ", gauges.csv", engine->blocks().anchors.empty() ? "" : ", loading.csv",
+             ro.vtk ? ", run.pvd, vtk/" : "");
+  std::fflush(stdout);
+  // Figures of whatever was written (also after an interruption or numerical trouble).
+  if (scene.output.figures && !args.no_figures) {
+    std::string times;
+    for (double t : scene.output.figure_times) times += (times.empty() ? "" : ",") + fmt::format("{:.9g}", t);
+    std::vector<std::string> fig{"run", out.string()};
+    if (!times.empty()) {
+      fig.push_back("--times");
+      fig.push_back(times);
+    }
+    fig.push_back("--crack-interval");
+    fig.push_back(fmt::format("{:.9g}", scene.output.crack_interval));
+    if (draw_figures(fig)) fmt::print("figures in {}/figures/\n", out.string());
+  }
   if (result.exit_status == dda::kRunInterrupted)
     throw CommandFailed(result.message + "; the files written so far are valid", result.exit_status);
   if (result.exit_status != dda::kRunCompleted) throw CommandFailed(result.message, result.exit_status);
@@ -151,6 +171,7 @@ void register_run_command(CLI::App& app) {
       ->check(CLI::IsMember({"pcg", "direct"}));
   command->add_option("--max-steps", args->max_steps, "stop after this many steps (0: run to the end time)");
   command->add_flag("--no-vtk", args->no_vtk, "skip the VTU snapshots");
+  command->add_flag("--no-figures", args->no_figures, "skip the PNG figures (also skipped when scene.output.figures is false)");
   command->callback([args] { run_run(*args); });
 }
 

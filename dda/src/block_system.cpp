@@ -9,6 +9,15 @@
 
 namespace ddafrac::dda {
 
+const char* to_string(CrackType t) {
+  switch (t) {
+    case CrackType::None: return "none";
+    case CrackType::Tensile: return "tensile";
+    case CrackType::Shear: return "shear";
+  }
+  return "?";
+}
+
 Mat3 elastic_matrix(double young, double poisson, scene::PlaneModel plane) {
   Mat3 e = Mat3::Zero();
   const double nu = poisson;
@@ -193,6 +202,11 @@ BlockSystem build_block_system(const scene::Scene& scene, const meshes::Mesh& me
       return std::tie(p.block_a, p.block_b, p.node_a, p.node_b) <
              std::tie(q.block_a, q.block_b, q.node_a, q.node_b);
     });
+    for (Joint& j : s.joints)
+      for (Index v = s.begin(static_cast<std::size_t>(j.block_a)); v < s.end(static_cast<std::size_t>(j.block_a)); ++v) {
+        if (s.vertex_node[static_cast<std::size_t>(v)] == j.node_a) j.vertex_a = v;
+        if (s.vertex_node[static_cast<std::size_t>(v)] == j.node_b) j.vertex_b = v;
+      }
   }
   s.joint_offsets.assign(nb + 1, 0);
   for (const Joint& j : s.joints) {

@@ -103,7 +103,7 @@ void offer(Candidate& slot, const Candidate& c) {
 
 /// Narrow phase of one block pair a < b; appends at most one contact per vertex.
 void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
-                  std::vector<Candidate>& best, std::vector<Candidate>& out) {
+                  std::vector<Candidate>& best, std::vector<char>& skip, std::vector<Candidate>& out) {
   const BlockSystem& s = w.s;
   const DetectionWorkspace& ws = w.w;
   const Index na = s.end(a) - s.begin(a);
@@ -118,12 +118,41 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
     return block == a ? best[static_cast<std::size_t>(v - s.begin(a))]
                       : best[static_cast<std::size_t>(na + v - s.begin(b))];
   };
+  // Intact virtual joints of the pair are topological, not geometric: both vertices of block a
+  // on the shared edge hold a contact with b's copy of the edge whatever the gap (a joint loaded
+  // toward its tensile strength opens wider than the search distance). Their vertices, on both
+  // sides, take no other contact of this pair; once the joint breaks they are detected like any
+  // vertex (a broken joint behaves as if it had never been bonded).
+  skip.assign(static_cast<std::size_t>(na + nb), 0);
+  if (!s.joints.empty()) {
+    for (Index k = s.joint_offsets[a]; k < s.joint_offsets[a + 1]; ++k) {
+      const Joint& j = s.joints[static_cast<std::size_t>(s.joint_of_block[k])];
+      if (j.block_a != a || j.block_b != b || j.broken) continue;
+      Index ua = -1, ub = -1;  // b's vertices at node_a / node_b
+      for (Index u = s.begin(b); u < s.end(b); ++u) {
+        if (s.vertex_node[static_cast<std::size_t>(u)] == j.node_a) ua = u;
+        if (s.vertex_node[static_cast<std::size_t>(u)] == j.node_b) ub = u;
+      }
+      if (ua < 0 || ub < 0 || j.vertex_a < 0 || j.vertex_b < 0) continue;
+      const Index e0 = w.next(b, ua) == ub ? ua : ub;  // b's CCW edge along the joint
+      for (Index v : {j.vertex_a, j.vertex_b}) {
+        skip[static_cast<std::size_t>(v - s.begin(a))] = 1;
+        slot_of(a, v) = Candidate{true, false, gap(w, v, e0), a, v, b, e0};
+      }
+      skip[static_cast<std::size_t>(na + ua - s.begin(b))] = 1;
+      skip[static_cast<std::size_t>(na + ub - s.begin(b))] = 1;
+    }
+  }
+  auto skipped = [&](Index block, Index v) {
+    return skip[static_cast<std::size_t>(block == a ? v - s.begin(a) : na + v - s.begin(b))] != 0;
+  };
   // Vertex-edge.
   for (int side = 0; side < 2; ++side) {
     const Index p = side == 0 ? a : b;  // vertex block
     const Index q = side == 0 ? b : a;  // edge block
     const double bx0 = ws.xmin[q], bx1 = ws.xmax[q], by0 = ws.ymin[q], by1 = ws.ymax[q];
     for (Index v = s.begin(p); v < s.end(p); ++v) {
+      if (skipped(p, v)) continue;
       const double px = w.x(v), py = w.y(v);
       if (px < bx0 - depth || px > bx1 + depth || py < by0 - depth || py > by1 + depth) continue;
       for (Index e0 = s.begin(q); e0 < s.end(q); ++e0) {
@@ -144,7 +173,9 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
   }
   // Vertex-vertex: reduce to the reference line with the largest gap (the entrance line).
   for (Index v = s.begin(a); v < s.end(a); ++v) {
+    if (skipped(a, v)) continue;
     for (Index u = s.begin(b); u < s.end(b); ++u) {
+      if (skipped(b, u)) continue;
       const double dx = w.x(v) - w.x(u), dy = w.y(v) - w.y(u);
       if (dx * dx + dy * dy > vv2) continue;
       if (wedge_gap(w, v, u) > prm.vv_max_gap_angle) continue;
@@ -267,6 +298,7 @@ std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams
 #pragma omp parallel
   {
     std::vector<Candidate> best;
+    std::vector<char> skip;
 #pragma omp for schedule(dynamic, 32)
     for (std::int64_t b = 0; b < ni; ++b) {
       auto& cand = work.candidates[b];
@@ -285,11 +317,16 @@ std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams
             cand.push_back(o);
           }
         }
+      if (!s.joints.empty())
+        for (Index k = s.joint_offsets[b]; k < s.joint_offsets[b + 1]; ++k) {
+          const Joint& jt = s.joints[static_cast<std::size_t>(s.joint_of_block[k])];
+          if (!jt.broken && jt.block_a == b) cand.push_back(jt.block_b);
+        }
       std::sort(cand.begin(), cand.end());
       cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
       auto& found = work.found[b];
       found.clear();
-      for (Index o : cand) narrow_phase(w, static_cast<Index>(b), o, prm, best, found);
+      for (Index o : cand) narrow_phase(w, static_cast<Index>(b), o, prm, best, skip, found);
     }
   }
   std::vector<std::size_t> start(n + 1, 0);
@@ -307,12 +344,13 @@ bool key_less(const Contact& p, const Contact& q) {
 }
 }  // namespace
 
-void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Contact>& current) {
+void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Contact>& current,
+                            const std::vector<Joint>& joints) {
   const auto n = static_cast<std::int64_t>(current.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < n; ++k) {
     Contact& c = current[k];
-    c.state = c.d0 <= 0.0 || c.joint >= 0 ? ContactState::Locked : ContactState::Open;
+    c.state = c.d0 <= 0.0 || c.bonded(joints) ? ContactState::Locked : ContactState::Open;
     auto it = std::lower_bound(previous.begin(), previous.end(), c, key_less);
     if (it == previous.end() || key_less(c, *it)) continue;
     const Contact& p = *it;

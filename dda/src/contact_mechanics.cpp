@@ -7,7 +7,7 @@
 namespace ddafrac::dda {
 
 void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem& blocks,
-                               const scene::Scene& scene, double shear_ratio) {
+                               const scene::Scene& scene) {
   const auto n = static_cast<std::int64_t>(contacts.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < n; ++k) {
@@ -15,19 +15,13 @@ void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem
     Index set = -1;
     if (c.bonded(blocks.joints))
       set = blocks.joints[static_cast<std::size_t>(c.joint)].joint_set;
-    else if (scene.real_joints < scene.joint_sets.size())
+    else
       set = static_cast<Index>(scene.real_joints);
     c.joint_set = set;
-    double kn = scene.analysis.penalty, ks = 0.0, phi = 0.0;
-    if (set >= 0) {
-      const scene::JointSet& js = scene.joint_sets[static_cast<std::size_t>(set)];
-      if (js.normal_stiffness > 0.0) kn = js.normal_stiffness;
-      ks = js.shear_stiffness;
-      phi = js.friction_angle;
-    }
-    c.kn = kn;
-    c.ks = ks > 0.0 ? ks : shear_ratio * kn;
-    c.tan_phi = std::tan(phi);
+    const scene::JointSet& js = scene.joint_sets[static_cast<std::size_t>(set)];
+    c.kn = js.normal_stiffness > 0.0 ? js.normal_stiffness : scene.analysis.penalty;
+    c.ks = js.shear_stiffness;
+    c.tan_phi = std::tan(js.friction_angle);
   }
 }
 

@@ -56,13 +56,27 @@ std::vector<std::string> ActiveTerms::names() const {
   if (contacts) n.push_back("contact springs");
   if (friction) n.push_back("friction (sliding contacts)");
   if (bonded_joints) n.push_back("bonded virtual joints");
+  if (fracture) n.push_back("fracture check");
   if (damping) n.push_back("mass damping");
   return n;
 }
 
 Engine::Engine(scene::Scene scene, const meshes::Mesh& mesh, EngineOptions options)
     : scene_(std::move(scene)), options_(std::move(options)) {
+  if (scene_.real_joints >= scene_.joint_sets.size())
+    throw std::invalid_argument("the scene names no joint set for real joints (contacts.real_joints)");
+  for (const auto& js : scene_.joint_sets)
+    if (!(js.shear_stiffness > 0.0))
+      throw std::invalid_argument(fmt::format("joint set '{}' has no positive shear stiffness", js.name));
   blocks_ = build_block_system(scene_, mesh, options_.bond_virtual_joints, options_.point_loads, options_.anchors);
+  for (const auto& gauge : scene_.gauges) {
+    const Index b = find_block(blocks_, gauge.position[0], gauge.position[1]);
+    if (b < 0)
+      throw std::invalid_argument(fmt::format("gauge '{}' at ({:.6g}, {:.6g}) m lies in no block at t = 0 (outside "
+                                              "the bodies or in a slot)",
+                                              gauge.name, gauge.position[0], gauge.position[1]));
+    gauge_blocks_.push_back(b);
+  }
   const auto& an = scene_.analysis;
   if (!(an.dt_max > 0.0)) throw std::invalid_argument("analysis.dt_max must be positive");
   dt_ = an.dt_max;
@@ -82,6 +96,7 @@ Engine::Engine(scene::Scene scene, const meshes::Mesh& mesh, EngineOptions optio
   active_.point_loads = !blocks_.loads.empty();
   active_.anchors = !blocks_.anchors.empty();
   active_.bonded_joints = !blocks_.joints.empty();
+  active_.fracture = !blocks_.joints.empty();
   active_.damping = options_.mass_damping > 0.0;
   if (!active_.dynamic) std::fill(blocks_.velocity.begin(), blocks_.velocity.end(), Vec6::Zero());
 }
@@ -109,8 +124,8 @@ void Engine::trouble(const std::string& what) const {
 
 void Engine::detect() {
   std::vector<Contact> found = detect_contacts(blocks_, options_.detection, detection_);
-  transfer_contact_state(set_.contacts, found);
-  assign_contact_properties(found, blocks_, scene_, options_.shear_to_normal_stiffness);
+  transfer_contact_state(set_.contacts, found, blocks_.joints);
+  assign_contact_properties(found, blocks_, scene_);
   set_.contacts = std::move(found);
   build_contact_topology(set_, blocks_.block_count());
   const auto nc = static_cast<std::int64_t>(set_.contacts.size());
@@ -275,6 +290,120 @@ void Engine::accept(double dt) {
   update_block_geometry(blocks_);
 }
 
+FailureRatios failure_ratios(const JointForce& f, double length, const scene::JointSet& js) {
+  auto ratio = [](double load, double strength) {
+    if (load <= 0.0) return 0.0;
+    return strength > 0.0 ? load / strength : std::numeric_limits<double>::infinity();
+  };
+  FailureRatios r;
+  r.r1 = ratio(f.normal, js.tensile_strength * length);
+  const double compression = std::max(0.0, -f.normal);
+  r.r2 = ratio(std::abs(f.shear), js.cohesion * length + compression * std::tan(js.friction_angle));
+  return r;
+}
+
+std::vector<JointForce> Engine::joint_forces() const {
+  const auto& js = blocks_.joints;
+  const auto& cs = set_.contacts;
+  std::vector<JointForce> f(js.size());
+  // Contacts of each joint in list order (CSR built serially: fixed summation order).
+  std::vector<Index> offsets(js.size() + 1, 0), list;
+  for (const Contact& c : cs)
+    if (c.joint >= 0) ++offsets[static_cast<std::size_t>(c.joint) + 1];
+  for (std::size_t j = 0; j < js.size(); ++j) offsets[j + 1] += offsets[j];
+  list.resize(static_cast<std::size_t>(offsets.back()));
+  {
+    std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
+    for (std::size_t k = 0; k < cs.size(); ++k)
+      if (cs[k].joint >= 0) list[static_cast<std::size_t>(fill[static_cast<std::size_t>(cs[k].joint)]++)] = static_cast<Index>(k);
+  }
+  const auto nj = static_cast<std::int64_t>(js.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t j = 0; j < nj; ++j) {
+    const Joint& jt = js[j];
+    double tx = blocks_.vx[jt.vertex_b] - blocks_.vx[jt.vertex_a];
+    double ty = blocks_.vy[jt.vertex_b] - blocks_.vy[jt.vertex_a];
+    const double tl = std::hypot(tx, ty);
+    tx /= tl;
+    ty /= tl;
+    JointForce& out = f[j];
+    for (Index m = offsets[j]; m < offsets[j + 1]; ++m) {
+      const Contact& c = cs[list[m]];
+      const double ux = blocks_.vx[c.edge1] - blocks_.vx[c.edge0], uy = blocks_.vy[c.edge1] - blocks_.vy[c.edge0];
+      const double proj = (ux * tx + uy * ty) / std::hypot(ux, uy);
+      out.normal -= c.normal_force;  // compression positive per contact -> tension positive
+      // The shear spring pushes the vertex by -shear_force along the edge: on block_a directly
+      // when it owns the vertex, as the reaction otherwise.
+      out.shear += (c.vblock == jt.block_a ? -1.0 : 1.0) * c.shear_force * proj;
+      ++out.contacts;
+    }
+  }
+  return f;
+}
+
+std::size_t Engine::fracture_check() {
+  auto& js = blocks_.joints;
+  if (js.empty()) return 0;
+  const std::vector<JointForce> f = joint_forces();
+  const auto nj = static_cast<std::int64_t>(js.size());
+  std::vector<FailureRatios> ratio(js.size());
+  std::vector<char> breaks(js.size(), 0);
+  // Judged in parallel against the state of the step; nothing is changed until all are judged.
+#pragma omp parallel for schedule(static)
+  for (std::int64_t j = 0; j < nj; ++j) {
+    const Joint& jt = js[j];
+    if (jt.broken || f[j].contacts == 0) continue;
+    ratio[j] = failure_ratios(f[j], jt.length, scene_.joint_sets[static_cast<std::size_t>(jt.joint_set)]);
+    breaks[j] = ratio[j].broken() ? 1 : 0;
+  }
+  std::size_t n = 0;
+  for (std::size_t j = 0; j < js.size(); ++j) {
+    if (!breaks[j]) continue;
+    Joint& jt = js[j];
+    jt.broken = true;
+    jt.failure = ratio[j].type();
+    CrackEvent ev;
+    ev.t = time_;
+    ev.x = 0.5 * (blocks_.vx[jt.vertex_a] + blocks_.vx[jt.vertex_b]);
+    ev.y = 0.5 * (blocks_.vy[jt.vertex_a] + blocks_.vy[jt.vertex_b]);
+    ev.type = jt.failure;
+    ev.joint = static_cast<Index>(j);
+    ev.r1 = ratio[j].r1;
+    ev.r2 = ratio[j].r2;
+    cracks_.push_back(ev);
+    ++crack_counts_.total;
+    if (ev.type == CrackType::Tensile) ++crack_counts_.tensile; else ++crack_counts_.shear;
+    ++n;
+  }
+  return n;
+}
+
+std::vector<Engine::BodyLoad> Engine::body_loads() const {
+  std::vector<BodyLoad> out;
+  std::vector<long> count;
+  for (const Anchor& p : blocks_.anchors) {
+    const Index body = blocks_.body[static_cast<std::size_t>(p.block)];
+    std::size_t k = 0;
+    while (k < out.size() && out[k].body != body) ++k;
+    if (k == out.size()) {
+      out.push_back({body, 0.0, 0.0, 0.0, 0.0});
+      count.push_back(0);
+    }
+    // Spring force on the body: penalty · (target − position), target at the current time.
+    out[k].fx += anchor_penalty_ * (p.x_start + p.vx * time_ - p.x);
+    out[k].fy += anchor_penalty_ * (p.y_start + p.vy * time_ - p.y);
+    out[k].ux += p.x - p.x_start;
+    out[k].uy += p.y - p.y_start;
+    ++count[k];
+  }
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    out[k].ux /= static_cast<double>(count[k]);
+    out[k].uy /= static_cast<double>(count[k]);
+  }
+  std::sort(out.begin(), out.end(), [](const BodyLoad& p, const BodyLoad& q) { return p.body < q.body; });
+  return out;
+}
+
 Energies Engine::energies() const {
   Energies e;
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
@@ -393,6 +522,14 @@ StepReport Engine::step(double max_dt) {
       accept(dt);
     }
     time_ += dt;
+    // Fracture check on the converged, accepted step. Breaks take effect from the next step
+    // (the joint's contacts become real joints at the next detection); the step is not re-solved,
+    // so a joint carries at most one step's load increment beyond its strength.
+    {
+      Timer t(stats_.times.fracture);
+      rep.new_cracks = fracture_check();
+    }
+    rep.cracks = crack_counts_;
     ++step_;
     dt_prev_ = dt;
     if (cuts == 0 && it <= options_.easy_open_close && dt_ < an.dt_max)

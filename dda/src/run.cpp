@@ -1,14 +1,15 @@
 #include "ddafrac/dda/run.hpp"
 
+#include "ddafrac/common/whole_file.hpp"
+
 #include <fmt/core.h>
 #include <omp.h>
 
 #include <cmath>
-#include <fstream>
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
-#include <system_error>
 
 namespace ddafrac::dda {
 
@@ -23,13 +24,39 @@ const char* plane_name(scene::PlaneModel p) { return p == scene::PlaneModel::Str
 
 std::string history_header() {
   return "step,t,dt,open_close_iterations,cg_iterations,dt_cuts,kinetic_energy,strain_energy,contact_energy,"
-         "max_penetration,contacts,closed,sliding\n";
+         "kinetic_strain_ratio,max_penetration,contacts,closed,sliding,new_cracks,cracks_total,cracks_tensile,"
+         "cracks_shear\n";
 }
 
 std::string history_row(const StepReport& r) {
-  return fmt::format("{},{:.17g},{:.17g},{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{},{},{}\n", r.step, r.time, r.dt,
-                     r.open_close, r.cg_iterations, r.cuts, r.energy.kinetic, r.energy.strain, r.energy.contact,
-                     r.max_penetration, r.contacts, r.closed, r.sliding);
+  const double ratio = r.energy.strain > 0.0 ? r.energy.kinetic / r.energy.strain : 0.0;
+  return fmt::format("{},{:.17g},{:.17g},{},{},{},{:.17g},{:.17g},{:.17g},{:.9g},{:.17g},{},{},{},{},{},{},{}\n", r.step,
+                     r.time, r.dt, r.open_close, r.cg_iterations, r.cuts, r.energy.kinetic, r.energy.strain,
+                     r.energy.contact, ratio, r.max_penetration, r.contacts, r.closed, r.sliding, r.new_cracks,
+                     r.cracks.total, r.cracks.tensile, r.cracks.shear);
+}
+
+std::string cracks_document(const std::vector<CrackEvent>& cracks) {
+  std::string s = "t,x,y,type,joint,r1,r2\n";
+  for (const CrackEvent& c : cracks)
+    s += fmt::format("{:.17g},{:.17g},{:.17g},{},{},{:.17g},{:.17g}\n", c.t, c.x, c.y, to_string(c.type), c.joint, c.r1, c.r2);
+  return s;
+}
+
+/// New cracks per interval [k·w, (k+1)·w) from t = 0 up to the interval holding `time`.
+std::string crack_intervals_document(const std::vector<CrackEvent>& cracks, double width, double time) {
+  const auto bins = static_cast<std::size_t>(std::max(1.0, std::ceil(time / width * (1.0 - kTimeSlack))));
+  std::vector<CrackCounts> n(bins);
+  for (const CrackEvent& c : cracks) {
+    const auto k = std::min(bins - 1, static_cast<std::size_t>(std::max(0.0, c.t / width * (1.0 - kTimeSlack))));
+    ++n[k].total;
+    if (c.type == CrackType::Tensile) ++n[k].tensile; else ++n[k].shear;
+  }
+  std::string s = "interval_start,interval_end,total,tensile,shear\n";
+  for (std::size_t k = 0; k < bins; ++k)
+    s += fmt::format("{:.9g},{:.9g},{},{},{}\n", static_cast<double>(k) * width, static_cast<double>(k + 1) * width,
+                     n[k].total, n[k].tensile, n[k].shear);
+  return s;
 }
 
 struct Snapshot {
@@ -45,7 +72,8 @@ std::string pvd_document(const std::vector<Snapshot>& snaps) {
   return s;
 }
 
-nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResult& r, double setup_wall) {
+nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResult& r, double setup_wall,
+                            const nlohmann::json& loading) {
   using nlohmann::json;
   const auto& sc = e.scene();
   const auto& an = sc.analysis;
@@ -71,7 +99,8 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
   j["contact_search_distance"] = e.options().detection.search_distance;
   const PhaseTimes& t = st.times;
   j["wall_time"] = {{"setup", setup_wall},     {"detection", t.detection}, {"assembly", t.assembly},
-                    {"solve", t.solve},        {"judgement", t.judgement}, {"update", t.update},
+                    {"solve", t.solve},        {"judgement", t.judgement}, {"fracture", t.fracture},
+                    {"update", t.update},
                     {"output", t.output},      {"total", r.wall}};
   j["steps"] = st.steps;
   j["simulated_time"] = e.time();
@@ -91,26 +120,15 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
   j["max_penetration"] = st.max_penetration;
   j["contacts"] = e.contacts().contacts.size();
   j["active_terms"] = e.active_terms().names();
-  j["cracks"] = {{"total", 0}, {"tensile", 0}, {"shear", 0}};
+  const CrackCounts& cc = e.crack_counts();
+  j["cracks"] = {{"total", cc.total}, {"tensile", cc.tensile}, {"shear", cc.shear},
+                 {"interval", sc.output.crack_interval}};
+  j["loading"] = loading;
   j["exit"] = {{"status", r.exit_status}, {"reason", r.reason}, {"message", r.message}};
   return j;
 }
 
 }  // namespace
-
-void write_file_atomically(const fs::path& path, const std::string& content) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw std::runtime_error("cannot rename " + tmp.string() + " to " + path.string() + ": " + ec.message());
-}
 
 void principal_stresses(const Vec3& s, double& sigma1, double& sigma3) {
   const double c = 0.5 * (s[0] + s[1]);
@@ -122,23 +140,35 @@ void principal_stresses(const Vec3& s, double& sigma1, double& sigma3) {
 std::string vtu_document(const Engine& e) {
   const BlockSystem& b = e.blocks();
   const std::size_t nb = b.block_count();
+  std::vector<const Joint*> lines;
+  for (const Joint& j : b.joints)
+    if (j.broken && j.failure != CrackType::None) lines.push_back(&j);
+  const std::size_t nl = lines.size();
   std::string s;
   s.reserve(200 * b.vertex_count() + 400 * nb);
   s += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
-  s += fmt::format("<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", b.vertex_count(), nb);
+  s += fmt::format("<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", b.vertex_count(), nb + nl);
   s += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (std::size_t v = 0; v < b.vertex_count(); ++v) s += fmt::format("{:.12g} {:.12g} 0\n", b.vx[v], b.vy[v]);
   s += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
   for (std::size_t v = 0; v < b.vertex_count(); ++v) s += fmt::format("{}\n", v);
+  for (const Joint* j : lines) s += fmt::format("{}\n{}\n", j->vertex_a, j->vertex_b);
   s += "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
   for (std::size_t c = 0; c < nb; ++c) s += fmt::format("{}\n", b.vertex_offsets[c + 1]);
+  for (std::size_t c = 0; c < nl; ++c) s += fmt::format("{}\n", b.vertex_count() + 2 * (c + 1));
   s += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
   for (std::size_t c = 0; c < nb; ++c) s += "7\n";
+  for (std::size_t c = 0; c < nl; ++c) s += "3\n";
   s += "</DataArray>\n</Cells>\n<CellData Scalars=\"sigma1\">\n";
   s += "<DataArray type=\"Int32\" Name=\"body\" format=\"ascii\">\n";
   for (std::size_t c = 0; c < nb; ++c) s += fmt::format("{}\n", b.mesh_body[c]);
+  for (std::size_t c = 0; c < nl; ++c) s += "-1\n";
+  s += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"crack_type\" format=\"ascii\">\n";
+  for (std::size_t c = 0; c < nb; ++c) s += "0\n";
+  for (const Joint* j : lines) s += fmt::format("{}\n", static_cast<int>(j->failure));
   s += "</DataArray>\n<DataArray type=\"Float64\" Name=\"stress\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (std::size_t c = 0; c < nb; ++c) s += fmt::format("{:.9g} {:.9g} {:.9g}\n", b.stress[c][0], b.stress[c][1], b.stress[c][2]);
+  for (std::size_t c = 0; c < nl; ++c) s += "0 0 0\n";
   std::string s1 = "</DataArray>\n<DataArray type=\"Float64\" Name=\"sigma1\" format=\"ascii\">\n";
   std::string s3 = "</DataArray>\n<DataArray type=\"Float64\" Name=\"sigma3\" format=\"ascii\">\n";
   for (std::size_t c = 0; c < nb; ++c) {
@@ -147,9 +177,14 @@ std::string vtu_document(const Engine& e) {
     s1 += fmt::format("{:.9g}\n", a);
     s3 += fmt::format("{:.9g}\n", z);
   }
+  for (std::size_t c = 0; c < nl; ++c) {
+    s1 += "0\n";
+    s3 += "0\n";
+  }
   s += s1 + s3;
   s += "</DataArray>\n<DataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (std::size_t c = 0; c < nb; ++c) s += fmt::format("{:.9g} {:.9g} 0\n", b.velocity[c][kU], b.velocity[c][kV]);
+  for (std::size_t c = 0; c < nl; ++c) s += "0 0 0\n";
   s += "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
   return s;
 }
@@ -166,24 +201,63 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
   std::vector<Snapshot> snaps;
   Statistics& st = engine.statistics();
   const double setup_wall = 0.0;
+  const scene::Scene& sc = engine.scene();
+  const double crack_width = sc.output.crack_interval > 0.0 ? sc.output.crack_interval : end;
+
+  // Gauges: stress of the block that held the point at t = 0, at every output.
+  std::string gauges = "t,gauge,sigma_xx,sigma_yy,tau_xy,sigma1,sigma3\n";
+  double gauges_time = -1.0;
+  auto sample_gauges = [&] {
+    if (engine.time() == gauges_time) return;
+    gauges_time = engine.time();
+    for (std::size_t g = 0; g < sc.gauges.size(); ++g) {
+      const Vec3& s = engine.blocks().stress[static_cast<std::size_t>(engine.gauge_blocks()[g])];
+      double s1, s3;
+      principal_stresses(s, s1, s3);
+      gauges += fmt::format("{:.17g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", engine.time(), sc.gauges[g].name, s[0],
+                            s[1], s[2], s1, s3);
+    }
+  };
+  // Loading of fixed and prescribed bodies, every step.
+  const bool loaded = !engine.blocks().anchors.empty();
+  std::string loading = "t,body,displacement_y,force_y\n";
+  nlohmann::json peaks = nlohmann::json::object();
+  auto sample_loading = [&] {
+    if (!loaded) return;
+    for (const Engine::BodyLoad& l : engine.body_loads()) {
+      const std::string name = l.body >= 0 ? sc.bodies[static_cast<std::size_t>(l.body)].name : std::string("extra");
+      loading += fmt::format("{:.17g},{},{:.12g},{:.12g}\n", engine.time(), name, l.uy, l.fy);
+      if (l.body < 0 || sc.bodies[static_cast<std::size_t>(l.body)].motion != scene::Motion::Prescribed) continue;
+      auto& p = peaks[name];
+      if (p.is_null() || std::abs(l.fy) > p["peak_abs_force_y"].get<double>())
+        p = {{"peak_abs_force_y", std::abs(l.fy)}, {"force_y", l.fy}, {"displacement_y", l.uy}, {"t", engine.time()}};
+    }
+  };
 
   auto write_outputs = [&](bool snapshot) {
     const double w0 = omp_get_wtime();
+    sample_gauges();
+    if (!sc.gauges.empty()) ddafrac::common::write_whole_text(o.out_dir / "gauges.csv", gauges);
+    if (loaded) ddafrac::common::write_whole_text(o.out_dir / "loading.csv", loading);
+    ddafrac::common::write_whole_text(o.out_dir / "cracks.csv", cracks_document(engine.cracks()));
+    ddafrac::common::write_whole_text(o.out_dir / "crack_intervals.csv",
+                                      crack_intervals_document(engine.cracks(), crack_width, std::max(engine.time(), end)));
     if (snapshot && o.vtk) {
       const std::string name = fmt::format("vtk/snapshot_{:06d}.vtu", snaps.size());
-      write_file_atomically(o.out_dir / name, vtu_document(engine));
+      ddafrac::common::write_whole_text(o.out_dir / name, vtu_document(engine));
       snaps.push_back({engine.time(), name});
-      write_file_atomically(o.out_dir / "run.pvd", pvd_document(snaps));
+      ddafrac::common::write_whole_text(o.out_dir / "run.pvd", pvd_document(snaps));
     }
-    write_file_atomically(o.out_dir / "history.csv", history);
+    ddafrac::common::write_whole_text(o.out_dir / "history.csv", history);
     st.times.output += omp_get_wtime() - w0;
     r.wall = omp_get_wtime() - t0;
     r.steps = st.steps;
     r.time = engine.time();
-    write_file_atomically(o.out_dir / "summary.json", summary_json(engine, o, r, setup_wall).dump(2) + "\n");
+    ddafrac::common::write_whole_text(o.out_dir / "summary.json", summary_json(engine, o, r, setup_wall, {{"peak", peaks}, {"unit", "N/m"}}).dump(2) + "\n");
   };
 
   r.reason = "running";
+  sample_loading();
   write_outputs(true);
   long next_output = 1;
   double last_progress = -1e300;
@@ -208,6 +282,7 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
       const double t_out = std::min(end, static_cast<double>(next_output) * interval);
       const StepReport rep = engine.step(t_out - engine.time());
       last = rep;
+      sample_loading();
       if (rep.step % std::max(1, o.history_every) == 0) history += history_row(rep);
       snapshot_at_end = true;
       if (engine.time() >= t_out - kTimeSlack * interval) {

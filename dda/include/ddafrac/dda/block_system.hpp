@@ -39,14 +39,21 @@ struct PointLoad {
   double fx = 0.0, fy = 0.0;
 };
 
+/// How a virtual joint failed (DESIGN.md §4): tensile if r1 > r2, shear otherwise.
+enum class CrackType : std::uint8_t { None = 0, Tensile = 1, Shear = 2 };
+const char* to_string(CrackType t);
+
 /// An edge shared by two cells of the same body meshed with virtual joints: a bonded contact
-/// until it breaks (the fracture check of the next issue sets `broken`).
+/// until it breaks. Setting `broken` makes its contacts real joints from the next detection on
+/// (the engine's fracture check does it and records the failure type; tests may do it directly).
 struct Joint {
   Index block_a = 0, block_b = 0;          // block_a < block_b
   meshes::Index node_a = 0, node_b = 0;    // mesh nodes of the shared edge
+  Index vertex_a = -1, vertex_b = -1;      // vertices of block_a at node_a / node_b (BlockSystem::vx)
   double length = 0.0;                      // m
   Index joint_set = 0;                      // index into Scene::joint_sets
   bool broken = false;
+  CrackType failure = CrackType::None;      // set by the fracture check when it breaks
 };
 
 struct BlockSystem {

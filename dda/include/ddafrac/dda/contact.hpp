@@ -103,8 +103,10 @@ std::vector<Contact> detect_contacts(const BlockSystem& blocks, const DetectionP
                                      DetectionWorkspace& work);
 
 /// Carries state (state, reference point, forces, slip) from the previous list to contacts of
-/// the same vertex and block pair; new contacts start closed (locked) if they touch, else open.
-void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Contact>& current);
+/// the same vertex and block pair; new contacts start closed (locked) if they touch or are
+/// bonded joints, else open (a broken joint starts like a contact that was never bonded).
+void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Contact>& current,
+                            const std::vector<Joint>& joints);
 
 /// Fills pairs and per-block lists of a sorted contact list.
 void build_contact_topology(ContactSet& set, std::size_t block_count);

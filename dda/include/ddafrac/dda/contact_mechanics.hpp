@@ -11,10 +11,11 @@
 namespace ddafrac::dda {
 
 /// Stiffness and friction of every contact from its joint set (bonded joints: their virtual
-/// joint set; others: the scene's real joints). kn falls back to the scene penalty, ks to
-/// shear_ratio·kn when the joint set gives none.
+/// joint set; others, broken joints included: the scene's real joints). kn falls back to the
+/// scene penalty when the joint set gives none; ks is the joint set's (the scene parser fills
+/// in its default).
 void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem& blocks,
-                               const scene::Scene& scene, double shear_ratio);
+                               const scene::Scene& scene);
 
 /// Normal gap, shear displacement from the locked reference point, and their gradients with
 /// respect to the unknowns of both blocks, from the current geometry. Open contacts

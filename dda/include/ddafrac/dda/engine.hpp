@@ -18,7 +18,6 @@ namespace ddafrac::dda {
 struct EngineOptions {
   SolverSettings solver;
   bool bond_virtual_joints = true;        // same-body shared edges start as bonded joints
-  double shear_to_normal_stiffness = 0.4; // ks = ratio·kn when a joint set gives no ks
   double anchor_penalty_factor = 100.0;   // fixed/prescribed point springs = factor·penalty (N/m)
   double search_distance_factor = 2.5;    // contact search distance / allowed step displacement
   double allowed_displacement = 0.0;      // m; 0 = max_displacement_ratio · half model height
@@ -35,9 +34,41 @@ struct EngineOptions {
 
 /// Wall time per phase, s.
 struct PhaseTimes {
-  double detection = 0.0, assembly = 0.0, solve = 0.0, judgement = 0.0, update = 0.0, output = 0.0;
-  double total() const { return detection + assembly + solve + judgement + update + output; }
+  double detection = 0.0, assembly = 0.0, solve = 0.0, judgement = 0.0, fracture = 0.0, update = 0.0,
+         output = 0.0;
+  double total() const { return detection + assembly + solve + judgement + fracture + update + output; }
 };
+
+/// One virtual joint breaking (DESIGN.md §4): at the end of the accepted step at time t.
+struct CrackEvent {
+  double t = 0.0;         // s
+  double x = 0.0, y = 0.0;  // joint midpoint, m
+  CrackType type = CrackType::None;
+  Index joint = -1;       // BlockSystem::joints index
+  double r1 = 0.0, r2 = 0.0;  // f_n / f_t,max and |f_s| / f_s,max at the break
+};
+
+/// Cumulative crack counts.
+struct CrackCounts {
+  long total = 0, tensile = 0, shear = 0;
+};
+
+/// Forces of one joint from its contacts (N/m): tension positive, shear along node_a -> node_b
+/// as the force on block_a.
+struct JointForce {
+  double normal = 0.0, shear = 0.0;
+  int contacts = 0;
+};
+
+/// Failure ratios of a joint (DESIGN.md §4): r1 = f_n/(σt·l) (tension, 0 under compression),
+/// r2 = |f_s|/(c·l + f_n,c·tanφ) with f_n,c the compressive normal force. A zero strength
+/// under a nonzero load gives +inf.
+struct FailureRatios {
+  double r1 = 0.0, r2 = 0.0;
+  bool broken() const { return r1 > 1.0 || r2 > 1.0; }
+  CrackType type() const { return r1 > r2 ? CrackType::Tensile : CrackType::Shear; }
+};
+FailureRatios failure_ratios(const JointForce& f, double length, const scene::JointSet& strength);
 
 struct Energies {
   double kinetic = 0.0;  // J per unit thickness
@@ -52,6 +83,8 @@ struct StepReport {
   int open_close = 0;       // iterations of the accepted attempt
   int cg_iterations = 0;    // over all solves of the step, retries included
   int cuts = 0;             // dt cuts before acceptance
+  std::size_t new_cracks = 0;  // joints broken by this step's fracture check
+  CrackCounts cracks;          // cumulative, after this step
   double max_displacement = 0.0;  // m, largest vertex displacement of the step
   double max_penetration = 0.0;   // m, deepest closed contact after the step
   std::size_t contacts = 0, closed = 0, sliding = 0;
@@ -73,7 +106,8 @@ struct Statistics {
 /// Which terms the time loop composed (summary.json lists them).
 struct ActiveTerms {
   bool dynamic = true, elasticity = true, initial_stress = true, gravity = false, point_loads = false,
-       anchors = false, contacts = false, friction = false, bonded_joints = false, damping = false;
+       anchors = false, contacts = false, friction = false, bonded_joints = false, fracture = false,
+       damping = false;
   std::vector<std::string> names() const;
 };
 
@@ -106,6 +140,23 @@ class Engine {
   /// Block displacement of the last accepted step (D per block).
   const BlockVector& last_displacement() const { return d_; }
 
+  /// Crack events so far, in order (within a step: by joint index), and their counts.
+  const std::vector<CrackEvent>& cracks() const { return cracks_; }
+  const CrackCounts& crack_counts() const { return crack_counts_; }
+  /// Current forces of every joint from the contacts of the last accepted step (parallel).
+  std::vector<JointForce> joint_forces() const;
+
+  /// Gauges of the scene: the block holding each gauge point at t = 0 (checked at construction).
+  const std::vector<Index>& gauge_blocks() const { return gauge_blocks_; }
+
+  /// Fixed and prescribed bodies: force of their anchor springs on the body (N/m) and mean
+  /// displacement of their anchored points from t = 0 (m).
+  struct BodyLoad {
+    Index body = -1;  // Scene::bodies index
+    double ux = 0.0, uy = 0.0, fx = 0.0, fy = 0.0;
+  };
+  std::vector<BodyLoad> body_loads() const;
+
  private:
   void detect();
   void block_terms(double dt);
@@ -113,6 +164,7 @@ class Engine {
   bool judge(int& changed_first);
   void reset_trials();
   void accept(double dt);
+  std::size_t fracture_check();
   [[noreturn]] void trouble(const std::string& what) const;
   std::string describe_block(Index b) const;
   std::string describe_contact(Index c) const;
@@ -135,6 +187,9 @@ class Engine {
   double allowed_ = 0.0;
   double anchor_penalty_ = 0.0;
   long step_ = 0;
+  std::vector<CrackEvent> cracks_;
+  CrackCounts crack_counts_;
+  std::vector<Index> gauge_blocks_;
 };
 
 }  // namespace ddafrac::dda

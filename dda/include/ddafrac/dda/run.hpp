@@ -35,6 +35,13 @@ struct RunOptions {
   const std::atomic<bool>* stop = nullptr;
 };
 
+/// Run directory contents besides the VTU files (DESIGN.md §9), all written whole at every
+/// output interval: summary.json, history.csv (per step; columns cracks_total, cracks_tensile,
+/// cracks_shear are cumulative, kinetic_strain_ratio = kinetic/strain energy), cracks.csv,
+/// crack_intervals.csv (new cracks per scene.output.crack_interval), gauges.csv (stress of the
+/// block holding each gauge at t = 0) and, with fixed or prescribed bodies, loading.csv (mean
+/// displacement and anchor-spring force per body; summary.json gives the peak |force_y| of the
+/// prescribed bodies).
 struct RunResult {
   int exit_status = kRunCompleted;
   std::string reason;   // "completed", "max_steps", "interrupted", "numerical_trouble"
@@ -47,11 +54,10 @@ struct RunResult {
 /// Runs the engine to its end time (or max_steps / stop request / numerical trouble).
 RunResult run_simulation(Engine& engine, const RunOptions& options);
 
-/// Writes `content` to `path` whole: a temporary file next to it, then rename.
-void write_file_atomically(const std::filesystem::path& path, const std::string& content);
-
-/// VTK XML unstructured grid of the blocks (polygons): cell data body, stress, sigma1, sigma3,
-/// velocity. ASCII.
+/// VTK XML unstructured grid of the blocks (polygons, VTK type 7) followed by the joints broken
+/// by the fracture check (lines, VTK type 3, between block_a's two joint vertices): cell data
+/// body (-1 on lines), stress, sigma1, sigma3, velocity (0 on lines) and crack_type (0 blocks,
+/// 1 tensile, 2 shear). ASCII.
 std::string vtu_document(const Engine& engine);
 
 /// Maximum and minimum principal stress (tension positive) of (σxx, σyy, τxy).

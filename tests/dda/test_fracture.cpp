@@ -1,0 +1,294 @@
+// Virtual joints and fracture (issue 4, tests 1-5): tensile and shear failure at the strength
+// within one step's load increment, the failure type of joints over both limits, the effective
+// modulus of a glued bar against kn/E, and pre-broken joints behaving bit-for-bit like contacts
+// that were never bonded.
+#define BOOST_TEST_MODULE dda_fracture
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include "ddafrac/dda/engine.hpp"
+#include "ddafrac/dda/synthetic.hpp"
+#include "support.hpp"
+
+using namespace ddafrac;
+using namespace ddafrac::dda;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Rock-like scene with a virtual joint set (index 0) and a real one (index 1).
+scene::Scene joint_scene(double dt, double kn, double tensile, double cohesion, double phi_deg) {
+  scene::Scene s = testing::basic_scene(scene::Mode::Dynamic, dt, kn, {0.0, 0.0});
+  scene::JointSet v;
+  v.name = "virtual";
+  v.friction_angle = phi_deg * kPi / 180.0;
+  v.cohesion = cohesion;
+  v.tensile_strength = tensile;
+  v.normal_stiffness = kn;
+  v.shear_stiffness = 0.4 * kn;
+  s.joint_sets.insert(s.joint_sets.begin(), v);
+  s.real_joints = 1;
+  s.analysis.max_displacement_ratio = 0.05;
+  scene::Body b = testing::body("rock");
+  b.virtual_joints = 0;
+  s.bodies.push_back(b);
+  return s;
+}
+
+/// Two unit-size squares (side h) of one body sharing the edge x = h: block 0 left, block 1 right.
+meshes::Mesh two_squares(double h) {
+  meshes::Mesh m;
+  m.body_names = {"rock"};
+  m.nodes = {{0, 0}, {h, 0}, {2 * h, 0}, {2 * h, h}, {h, h}, {0, h}};
+  m.cell_nodes = {0, 1, 4, 5, 1, 2, 3, 4};
+  m.cell_offsets = {0, 4, 8};
+  m.cell_body = {0, 0};
+  return m;
+}
+
+/// Anchors on the four corners of a block moving at (vx, vy).
+void hold(std::vector<Anchor>& out, Index block, const std::vector<meshes::Point>& corners, double vx, double vy) {
+  for (const auto& p : corners) out.push_back({block, p.x, p.y, p.x, p.y, vx, vy});
+}
+
+struct BreakRecord {
+  int step = -1;
+  JointForce before, at;  // joint force in the step before the break and in the breaking step
+};
+
+/// Steps until the joint of two_squares breaks (at most max_steps).
+BreakRecord run_to_break(Engine& e, int max_steps) {
+  BreakRecord r;
+  JointForce prev;
+  for (int k = 1; k <= max_steps; ++k) {
+    const StepReport rep = e.step();
+    const JointForce f = e.joint_forces().at(0);
+    if (rep.new_cracks > 0) {
+      r.step = k;
+      r.before = prev;
+      r.at = f;
+      return r;
+    }
+    prev = f;
+  }
+  return r;
+}
+
+}  // namespace
+
+// Test 1: pulled apart, the joint breaks in tension in the first step whose normal force exceeds
+// σt·l; the overshoot is below that step's force increment.
+BOOST_AUTO_TEST_CASE(tension_break_at_the_tensile_strength) {
+  const double h = 0.01, sigma_t = 1e6;
+  const scene::Scene sc = joint_scene(1e-6, 1e10, sigma_t, 1e7, 30.0);
+  EngineOptions opt;
+  hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
+  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, 0.01, 0.0);
+  Engine e(sc, two_squares(h), opt);
+  BOOST_REQUIRE_EQUAL(e.blocks().joints.size(), 1u);
+  const BreakRecord r = run_to_break(e, 5000);
+  BOOST_REQUIRE(r.step > 1);
+  const double limit = sigma_t * h;
+  const double increment = r.at.normal - r.before.normal;
+  BOOST_TEST_MESSAGE("tension: break at step " << r.step << ", f_n " << r.at.normal << " N/m vs σt·l " << limit
+                                               << " N/m, step increment " << increment << " N/m");
+  BOOST_TEST(r.before.normal <= limit);
+  BOOST_TEST(r.at.normal > limit);
+  BOOST_TEST(r.at.normal - limit <= increment);
+  BOOST_TEST(increment < 0.05 * limit);  // the loading is resolved finely enough to mean something
+  BOOST_REQUIRE_EQUAL(e.cracks().size(), 1u);
+  const CrackEvent& c = e.cracks()[0];
+  BOOST_TEST(static_cast<int>(c.type) == static_cast<int>(CrackType::Tensile));
+  BOOST_TEST(std::abs(c.r1 - r.at.normal / limit) <= 1e-12);
+  BOOST_TEST(std::abs(c.x - h) <= 1e-4 * h);
+  BOOST_TEST(std::abs(c.y - 0.5 * h) <= 1e-4 * h);
+  // From the next step on the joint is a real joint: it opens and carries no tension.
+  for (int k = 0; k < 20; ++k) e.step();
+  BOOST_TEST(e.joint_forces()[0].normal <= 0.0);
+  BOOST_TEST(e.crack_counts().total == 1);
+}
+
+// Test 2: sheared under compression, the joint breaks in shear when |f_s| exceeds c·l + f_n·tanφ.
+BOOST_AUTO_TEST_CASE(shear_break_under_compression) {
+  const double h = 0.01, cohesion = 1e6, phi = 30.0;
+  const scene::Scene sc = joint_scene(1e-6, 1e10, 1e7, cohesion, phi);
+  EngineOptions opt;
+  hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
+  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, -0.01, 0.02);  // pushes in and slides up
+  Engine e(sc, two_squares(h), opt);
+  const BreakRecord r = run_to_break(e, 5000);
+  BOOST_REQUIRE(r.step > 1);
+  const double tan_phi = std::tan(phi * kPi / 180.0);
+  auto excess = [&](const JointForce& f) {
+    return std::abs(f.shear) - (cohesion * h + std::max(0.0, -f.normal) * tan_phi);
+  };
+  BOOST_TEST_MESSAGE("shear: break at step " << r.step << ", f_n " << r.at.normal << " N/m, f_s " << r.at.shear
+                                             << " N/m, limit " << cohesion * h - r.at.normal * tan_phi << " N/m");
+  BOOST_TEST(r.at.normal < 0.0);  // under compression
+  BOOST_TEST(excess(r.before) <= 0.0);
+  BOOST_TEST(excess(r.at) > 0.0);
+  BOOST_TEST(excess(r.at) <= excess(r.at) - excess(r.before));
+  BOOST_REQUIRE_EQUAL(e.cracks().size(), 1u);
+  BOOST_TEST(static_cast<int>(e.cracks()[0].type) == static_cast<int>(CrackType::Shear));
+  BOOST_TEST(e.cracks()[0].r2 > 1.0);
+  BOOST_TEST(e.cracks()[0].r1 == 0.0);
+}
+
+// Test 3: both ratios above one in the same step; the type follows the larger one.
+BOOST_AUTO_TEST_CASE(type_follows_the_larger_ratio) {
+  scene::JointSet js;
+  js.tensile_strength = 1e6;
+  js.cohesion = 2e6;
+  js.friction_angle = 0.5;
+  const double l = 0.01;
+  FailureRatios a = failure_ratios({3e4, 2e4, 2}, l, js);  // r1 = 3, r2 = 1
+  BOOST_TEST(a.r1 == 3.0);
+  BOOST_TEST(a.r2 == 1.0);
+  BOOST_TEST(a.broken());
+  BOOST_TEST(static_cast<int>(a.type()) == static_cast<int>(CrackType::Tensile));
+  a = failure_ratios({2e4, -8e4, 2}, l, js);  // r1 = 2, r2 = 4
+  BOOST_TEST(static_cast<int>(a.type()) == static_cast<int>(CrackType::Shear));
+  // In the engine: a sudden diagonal pull (shear about half the normal force) overloads both
+  // limits in the first steps; a weak cohesion makes shear the larger ratio.
+  for (const double cohesion : {1e3, 1e1}) {
+    const double h = 0.01;
+    const scene::Scene sc = joint_scene(1e-6, 1e10, 1e3, cohesion, 30.0);
+    EngineOptions opt;
+    hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
+    hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, 1.0, 0.5);
+    Engine e(sc, two_squares(h), opt);
+    for (int k = 0; k < 5 && e.cracks().empty(); ++k) e.step();
+    BOOST_REQUIRE_EQUAL(e.cracks().size(), 1u);
+    const CrackEvent& c = e.cracks()[0];
+    BOOST_TEST_MESSAGE("c = " << cohesion << " Pa: r1 " << c.r1 << ", r2 " << c.r2 << ", " << to_string(c.type));
+    BOOST_TEST(c.r1 > 1.0);
+    BOOST_TEST(c.r2 > 1.0);
+    BOOST_TEST(static_cast<int>(c.type) ==
+               static_cast<int>(c.r1 > c.r2 ? CrackType::Tensile : CrackType::Shear));
+    BOOST_TEST(static_cast<int>(c.type) ==
+               static_cast<int>(cohesion > 1e2 ? CrackType::Tensile : CrackType::Shear));
+  }
+}
+
+namespace {
+/// A bar L x H of nx x ny squares, each split into two triangles (shared nodes, one body).
+meshes::Mesh triangulated_bar(double length, double height, int nx, int ny) {
+  meshes::Mesh m;
+  m.body_names = {"rock"};
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) m.nodes.push_back({length * i / nx, height * j / ny});
+  auto node = [&](int i, int j) { return static_cast<meshes::Index>(j * (nx + 1) + i); };
+  m.cell_offsets = {0};
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      for (const auto& tri : {std::vector<meshes::Index>{node(i, j), node(i + 1, j), node(i + 1, j + 1)},
+                              std::vector<meshes::Index>{node(i, j), node(i + 1, j + 1), node(i, j + 1)}}) {
+        m.cell_nodes.insert(m.cell_nodes.end(), tri.begin(), tri.end());
+        m.cell_offsets.push_back(static_cast<meshes::Index>(m.cell_nodes.size()));
+        m.cell_body.push_back(0);
+      }
+    }
+  return m;
+}
+
+/// E_eff of the glued bar in static tension: σ over the strain between two interior sections.
+double effective_modulus(double young, double kn) {
+  const double length = 0.1, height = 0.01, sigma = 1e6;
+  const int nx = 20, ny = 2;
+  scene::Scene sc = joint_scene(1.0, kn, 1e30, 1e30, 30.0);  // unbreakable joints
+  sc.materials[0].young = young;
+  sc.analysis.mode = scene::Mode::Static;
+  sc.analysis.max_displacement_ratio = 0.01;  // search distance well below the element size
+  const meshes::Mesh mesh = triangulated_bar(length, height, nx, ny);
+  EngineOptions opt;
+  // Left end held (x and y of its nodes), right end pulled by σ·H spread over its nodes.
+  for (std::size_t c = 0; c + 1 < mesh.cell_offsets.size(); ++c)
+    for (auto k = mesh.cell_offsets[c]; k < mesh.cell_offsets[c + 1]; ++k) {
+      const auto& p = mesh.nodes[static_cast<std::size_t>(mesh.cell_nodes[static_cast<std::size_t>(k)])];
+      if (p.x == 0.0) opt.anchors.push_back({static_cast<Index>(c), p.x, p.y, p.x, p.y, 0.0, 0.0});
+    }
+  std::vector<int> right_vertices;
+  for (std::size_t c = 0; c + 1 < mesh.cell_offsets.size(); ++c)
+    for (auto k = mesh.cell_offsets[c]; k < mesh.cell_offsets[c + 1]; ++k)
+      if (mesh.nodes[static_cast<std::size_t>(mesh.cell_nodes[static_cast<std::size_t>(k)])].x == length)
+        right_vertices.push_back(static_cast<int>(c));
+  for (std::size_t c = 0; c + 1 < mesh.cell_offsets.size(); ++c)
+    for (auto k = mesh.cell_offsets[c]; k < mesh.cell_offsets[c + 1]; ++k) {
+      const auto& p = mesh.nodes[static_cast<std::size_t>(mesh.cell_nodes[static_cast<std::size_t>(k)])];
+      if (p.x == length)
+        opt.point_loads.push_back({static_cast<Index>(c), p.x, p.y, sigma * height / static_cast<double>(right_vertices.size()), 0.0});
+    }
+  Engine e(sc, mesh, opt);
+  const std::vector<double> x0 = e.blocks().vx;
+  for (int k = 0; k < 4; ++k) e.step();
+  // Mean x displacement of the vertices on the sections x = 0.25 L and x = 0.75 L.
+  auto section = [&](double xs) {
+    double sum = 0.0;
+    int n = 0;
+    for (std::size_t v = 0; v < x0.size(); ++v)
+      if (std::abs(x0[v] - xs) < 1e-9) {
+        sum += e.blocks().vx[v] - x0[v];
+        ++n;
+      }
+    return sum / n;
+  };
+  const double strain = (section(0.75 * length) - section(0.25 * length)) / (0.5 * length);
+  return sigma / strain;
+}
+}  // namespace
+
+// Test 4: the joints add compliance in series with the blocks. With a normal spring kn (N/m per
+// unit thickness, i.e. Pa) on every joint, a joint of length l carries σ·l over its two contacts,
+// opening σ·l/(2kn) every ~l: 1/E_eff = 1/E + α/kn, α an O(1) constant of the mesh pattern (the
+// diagonal joints add shear compliance through ks = 0.4 kn). So E/E_eff − 1 = α·E/kn: it must
+// lie in (0, 2E/kn] and scale with E/kn (ratio of the deficits at kn = 10E and 100E within 10%
+// of 10).
+BOOST_AUTO_TEST_CASE(glued_bar_effective_modulus) {
+  const double young = 1e10;
+  const double e10 = effective_modulus(young, 10.0 * young);
+  const double e100 = effective_modulus(young, 100.0 * young);
+  const double deficit10 = young / e10 - 1.0, deficit100 = young / e100 - 1.0;
+  BOOST_TEST_MESSAGE("E_eff/E = " << e10 / young << " (kn = 10 E), " << e100 / young << " (kn = 100 E); α = "
+                                  << deficit10 * 10.0 << ", " << deficit100 * 100.0);
+  BOOST_TEST(deficit10 > 0.0);
+  BOOST_TEST(deficit100 > 0.0);
+  BOOST_TEST(deficit10 <= 2.0 / 10.0);
+  BOOST_TEST(deficit100 <= 2.0 / 100.0);
+  BOOST_TEST(std::abs(deficit10 / deficit100 - 10.0) <= 1.0);
+}
+
+// Test 5: a glued disc whose joints are all broken at t = 0 gives the same history, bit for bit,
+// as the same blocks never bonded (real joints only).
+BOOST_AUTO_TEST_CASE(pre_broken_equals_never_bonded) {
+  const meshes::Mesh mesh = make_ring_disc_mesh(0.1, 400);
+  const scene::Scene sc = make_impact_scene(3.5, 1.0);
+  EngineOptions bonded;
+  Engine a(sc, mesh, bonded);
+  BOOST_REQUIRE(!a.blocks().joints.empty());
+  for (Joint& j : a.blocks().joints) j.broken = true;
+  EngineOptions plain;
+  plain.bond_virtual_joints = false;
+  Engine b(sc, mesh, plain);
+  BOOST_REQUIRE(b.blocks().joints.empty());
+  int sliding_steps = 0;
+  for (int k = 0; k < 150; ++k) {
+    const StepReport ra = a.step(), rb = b.step();
+    BOOST_REQUIRE_EQUAL(ra.time, rb.time);
+    BOOST_REQUIRE_EQUAL(ra.dt, rb.dt);
+    BOOST_REQUIRE_EQUAL(ra.open_close, rb.open_close);
+    BOOST_REQUIRE_EQUAL(ra.cg_iterations, rb.cg_iterations);
+    BOOST_REQUIRE_EQUAL(ra.contacts, rb.contacts);
+    BOOST_REQUIRE_EQUAL(ra.closed, rb.closed);
+    BOOST_REQUIRE_EQUAL(ra.energy.kinetic, rb.energy.kinetic);
+    BOOST_REQUIRE_EQUAL(ra.energy.strain, rb.energy.strain);
+    BOOST_REQUIRE_EQUAL(ra.max_penetration, rb.max_penetration);
+    if (ra.sliding > 0) ++sliding_steps;
+  }
+  BOOST_TEST(a.blocks().vx == b.blocks().vx);
+  BOOST_TEST(a.blocks().vy == b.blocks().vy);
+  BOOST_TEST(a.crack_counts().total == 0);
+  BOOST_TEST_MESSAGE("150 steps identical; steps with sliding contacts: " << sliding_steps);
+}
