@@ -196,6 +196,7 @@ void run_sweep(const SweepArguments& args) {
   common::write_whole_text(table, table_csv(cases, out));
   print_table(cases, sweep.crack_time);
   fmt::print("\nwrote {}\n", table.string());
+  std::fflush(stdout);  // before the plotting script prints to the same terminal
   draw_figures({"sweep", table.string(), "--out", (out / "figures").string()});
 
   const auto failed = std::count_if(cases.begin(), cases.end(), [](const Case& c) { return c.exit_code != 0; });
