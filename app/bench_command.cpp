@@ -59,6 +59,7 @@ BenchRow bench_one(int target, int threads, const BenchArguments& a) {
   r.us.assembly = (after.times.assembly - before.times.assembly) * scale;
   r.us.solve = (after.times.solve - before.times.solve) * scale;
   r.us.judgement = (after.times.judgement - before.times.judgement) * scale;
+  r.us.fracture = (after.times.fracture - before.times.fracture) * scale;
   r.us.update = (after.times.update - before.times.update) * scale;
   return r;
 }
@@ -69,22 +70,22 @@ void run_bench(const BenchArguments& a) {
   std::vector<BenchRow> rows;
   fmt::print("glued disc impacting a plate, {} steps after {} warm-up steps, solver {}; µs per block-step\n", a.steps,
              a.warmup, a.solver);
-  fmt::print("{:>7} {:>8} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>7} {:>8}\n", "blocks", "contacts", "threads",
-             "total", "detect", "assemble", "solve", "judge", "update", "cg/it", "speedup");
+  fmt::print("{:>7} {:>8} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>7} {:>8}\n", "blocks", "contacts",
+             "threads", "total", "detect", "assemble", "solve", "judge", "fracture", "update", "cg/it", "speedup");
   for (int target : a.blocks) {
     double base = 0.0;
     for (int t : a.threads) {
       const BenchRow r = bench_one(target, t, a);
       if (base == 0.0) base = r.us.total();
-      fmt::print("{:>7} {:>8} {:>7} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>7.2f} {:>7.2f}x\n", r.blocks,
-                 r.contacts, r.threads, r.us.total(), r.us.detection, r.us.assembly, r.us.solve, r.us.judgement,
-                 r.us.update, r.cg_mean, base / r.us.total());
+      fmt::print("{:>7} {:>8} {:>7} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>7.2f} {:>7.2f}x\n",
+                 r.blocks, r.contacts, r.threads, r.us.total(), r.us.detection, r.us.assembly, r.us.solve,
+                 r.us.judgement, r.us.fracture, r.us.update, r.cg_mean, base / r.us.total());
       std::fflush(stdout);
       rows.push_back(r);
     }
   }
   nlohmann::json j = nlohmann::json::array();
-  std::string csv = "blocks,contacts,threads,steps,total_us,detection_us,assembly_us,solve_us,judgement_us,update_us,cg_mean\n";
+  std::string csv = "blocks,contacts,threads,steps,total_us,detection_us,assembly_us,solve_us,judgement_us,fracture_us,update_us,cg_mean\n";
   for (const BenchRow& r : rows) {
     j.push_back({{"blocks", r.blocks},
                  {"contacts", r.contacts},
@@ -96,11 +97,12 @@ void run_bench(const BenchArguments& a) {
                    {"assembly", r.us.assembly},
                    {"solve", r.us.solve},
                    {"judgement", r.us.judgement},
+                   {"fracture", r.us.fracture},
                    {"update", r.us.update}}},
                  {"cg_iterations_mean", r.cg_mean}});
-    csv += fmt::format("{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.3f}\n", r.blocks, r.contacts, r.threads,
-                       r.steps, r.us.total(), r.us.detection, r.us.assembly, r.us.solve, r.us.judgement, r.us.update,
-                       r.cg_mean);
+    csv += fmt::format("{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.3f}\n", r.blocks, r.contacts,
+                       r.threads, r.steps, r.us.total(), r.us.detection, r.us.assembly, r.us.solve, r.us.judgement,
+                       r.us.fracture, r.us.update, r.cg_mean);
   }
   common::write_whole_text(out / "bench.json", j.dump(2) + "\n");
   common::write_whole_text(out / "bench.csv", csv);

@@ -97,6 +97,17 @@ double gap(const View& w, Index v, Index e0) {
   return (w.x(v) - w.x(e0)) * w.w.enx[k] + (w.y(v) - w.y(e0)) * w.w.eny[k];
 }
 
+/// Crossing-number test: is (px, py) inside the polygon of block q (convex or concave)?
+bool inside_block(const View& w, Index q, double px, double py) {
+  bool in = false;
+  const Index v0 = w.s.begin(q), v1 = w.s.end(q);
+  for (Index i = v0, j = v1 - 1; i < v1; j = i++) {
+    const double xi = w.x(i), yi = w.y(i), xj = w.x(j), yj = w.y(j);
+    if ((yi > py) != (yj > py) && px < (xj - xi) * (py - yi) / (yj - yi) + xi) in = !in;
+  }
+  return in;
+}
+
 void offer(Candidate& slot, const Candidate& c) {
   if (!slot.valid || std::abs(c.d) < std::abs(slot.d)) slot = c;
 }
@@ -167,6 +178,9 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
         const double sx = px - w.x(e1), sy = py - w.y(e1);
         if (rx * rx + ry * ry <= vv2 || sx * sx + sy * sy <= vv2) continue;
         if (!wedge_faces_edge(w, v, ws.enx[k], ws.eny[k], sin_tol)) continue;
+        // Behind an edge is a penetration only inside the block: a vertex outside a triangle
+        // near one of its corners lies behind an edge too (loose fragments of a cracked mesh).
+        if (d < 0.0 && !inside_block(w, q, px, py)) continue;
         offer(slot_of(p, v), Candidate{true, false, d, p, v, q, e0});
       }
     }

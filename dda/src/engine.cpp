@@ -412,6 +412,12 @@ Energies Engine::energies() const {
     const PolygonIntegrals& g = blocks_.geometry[i];
     return 0.5 * (blocks_.mass[i] / g.area) * v.dot(mass_integral(g) * v);
   });
+  e.kinetic_free = chunked_sum(n, [&](std::int64_t i) {
+    if (blocks_.anchor_offsets[i] != blocks_.anchor_offsets[i + 1]) return 0.0;
+    const Vec6& v = blocks_.velocity[i];
+    const PolygonIntegrals& g = blocks_.geometry[i];
+    return 0.5 * (blocks_.mass[i] / g.area) * v.dot(mass_integral(g) * v);
+  });
   e.strain = chunked_sum(n, [&](std::int64_t i) {
     const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
     const Vec3& s = blocks_.stress[i];

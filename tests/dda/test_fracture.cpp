@@ -6,6 +6,8 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "ddafrac/dda/engine.hpp"
@@ -291,4 +293,18 @@ BOOST_AUTO_TEST_CASE(pre_broken_equals_never_bonded) {
   BOOST_TEST(a.blocks().vy == b.blocks().vy);
   BOOST_TEST(a.crack_counts().total == 0);
   BOOST_TEST_MESSAGE("150 steps identical; steps with sliding contacts: " << sliding_steps);
+}
+
+// Gauges report the block that holds the point at t = 0; a point in no block is refused by name.
+BOOST_AUTO_TEST_CASE(gauges_find_their_block_or_fail_clearly) {
+  const double h = 0.01;
+  scene::Scene sc = joint_scene(1e-6, 1e10, 1e6, 1e6, 30.0);
+  sc.gauges.push_back({"left", {0.25 * h, 0.5 * h}});
+  sc.gauges.push_back({"right", {1.75 * h, 0.5 * h}});
+  Engine e(sc, two_squares(h));
+  BOOST_TEST(e.gauge_blocks() == std::vector<Index>({0, 1}), boost::test_tools::per_element());
+  sc.gauges.push_back({"outside", {3.0 * h, 0.5 * h}});
+  BOOST_CHECK_EXCEPTION(Engine(sc, two_squares(h)), std::invalid_argument, [](const std::invalid_argument& error) {
+    return std::string(error.what()).find("gauge 'outside'") != std::string::npos;
+  });
 }

@@ -71,7 +71,8 @@ struct FailureRatios {
 FailureRatios failure_ratios(const JointForce& f, double length, const scene::JointSet& strength);
 
 struct Energies {
-  double kinetic = 0.0;  // J per unit thickness
+  double kinetic = 0.0;       // J per unit thickness
+  double kinetic_free = 0.0;  // of the blocks without fixed/prescribed points (platens excluded)
   double strain = 0.0;   // elastic energy of the blocks
   double contact = 0.0;  // energy stored in contact springs
 };

@@ -37,8 +37,10 @@ struct RunOptions {
 
 /// Run directory contents besides the VTU files (DESIGN.md §9), all written whole at every
 /// output interval: summary.json, history.csv (per step; columns cracks_total, cracks_tensile,
-/// cracks_shear are cumulative, kinetic_strain_ratio = kinetic/strain energy), cracks.csv,
-/// crack_intervals.csv (new cracks per scene.output.crack_interval), gauges.csv (stress of the
+/// cracks_shear are cumulative, kinetic_strain_ratio = kinetic energy of the free blocks
+/// (platens excluded) over the strain energy of the blocks: the quasi-static check), cracks.csv,
+/// crack_intervals.csv (new cracks per scene.output.crack_interval, up to the interval holding
+/// the current time), gauges.csv (stress of the
 /// block holding each gauge at t = 0) and, with fixed or prescribed bodies, loading.csv (mean
 /// displacement and anchor-spring force per body; summary.json gives the peak |force_y| of the
 /// prescribed bodies).
