@@ -45,6 +45,8 @@ struct FemArguments {
   double end_time = 0.0;  // s; 0 = the scene's
   double dt = 0.0;        // s; 0 = the scene's dt_max
   double snapshot_interval = 0.0;  // s; 0 = the scene's output_interval
+  double pulse_peak = 0.0;         // Pa; > 0: the patch is loaded by a half-sine pulse, not held
+  double pulse_duration = 4e-6;    // s
 };
 
 double diameter_of(const meshes::Geometry& g) {
@@ -145,6 +147,13 @@ nlohmann::json run_dynamic(const FemArguments& args, const scene::Scene& s, mesh
   problem.end_time = args.end_time > 0.0 ? args.end_time : s.analysis.end_time;
   problem.output_interval = std::max(s.analysis.output_interval, problem.dt);
   for (const auto& g : s.gauges) problem.gauges.push_back({g.name, g.position[0], g.position[1]});
+  nlohmann::json loading = {{"kind", "held patch"}, {"v0", problem.v0}};
+  if (args.pulse_peak > 0.0) {  // a disc at rest, the patch loaded by the pulse
+    problem.v0 = 0.0;
+    problem.pulse = fem::TractionPulse{args.pulse_peak, args.pulse_duration};
+    loading = {{"kind", "half-sine pressure pulse"}, {"peak_Pa", args.pulse_peak},
+               {"duration_s", args.pulse_duration}};
+  }
   if (s.output.vtk) {  // vtk/snapshot_*.vtu and run.pvd
     problem.snapshot_directory = out;
     problem.snapshot_interval = args.snapshot_interval > 0.0 ? args.snapshot_interval : problem.output_interval;
@@ -156,7 +165,7 @@ nlohmann::json run_dynamic(const FemArguments& args, const scene::Scene& s, mesh
   std::string energy = "t,kinetic,strain\n";
   for (const auto& e : result.energy) energy += fmt::format("{:.9g},{:.9g},{:.9g}\n", e.t, e.kinetic, e.strain);
   write_output(out / "energy.csv", energy);
-  return {{"kind", "dynamic"}, {"v0", problem.v0}, {"dt", problem.dt}, {"end_time", problem.end_time},
+  return {{"kind", "dynamic"}, {"loading", loading}, {"v0", problem.v0}, {"dt", problem.dt}, {"end_time", problem.end_time},
           {"steps", result.steps}, {"snapshots", result.snapshots.size()}, {"newmark", {{"beta", problem.newmark.beta}, {"gamma", problem.newmark.gamma}}},
           {"stats", stats_json(result.stats)}};
 }
@@ -215,6 +224,9 @@ void register_fem_command(CLI::App& app) {
   command->add_option("--arc-half-angle", args->arc_half_angle_deg, "Hondros arc half-angle in degrees when the geometry has no load arcs");
   command->add_option("--end-time", args->end_time, "dynamic end time in s (default: the scene's)");
   command->add_option("--dt", args->dt, "dynamic time step in s (default: the scene's dt_max)");
+  command->add_option("--pulse", args->pulse_peak,
+                      "dynamic: load the impact patch of a disc at rest by a half-sine pressure pulse of this peak (Pa) instead of holding it");
+  command->add_option("--pulse-duration", args->pulse_duration, "duration of the --pulse half-sine in s (default 4e-6)");
   command->add_option("--snapshot-interval", args->snapshot_interval,
                       "dynamic VTU snapshot interval in s (default: the scene's output_interval; none if the scene's output.vtk is false)");
   command->callback([args] { run_fem(*args); });

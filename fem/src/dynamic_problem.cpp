@@ -16,6 +16,7 @@ namespace {
 
 // Output times are matched to steps to within this fraction of a step.
 constexpr double step_rounding = 1e-9;
+constexpr double pi = 3.14159265358979323846;
 
 std::string pvd_document(const std::vector<SnapshotRecord>& snapshots) {
   std::string s =
@@ -38,6 +39,11 @@ double energy_of(const detail::Matrix& matrix, const detail::Vec& x, detail::Vec
 
 }  // namespace
 
+double TractionPulse::pressure(double t) const {
+  if (t < 0.0 || t > duration) return 0.0;
+  return peak * std::sin(pi * t / duration);
+}
+
 DynamicResult run_dynamic(const DynamicProblem& problem) {
   if (!(problem.dt > 0.0) || !(problem.end_time > 0.0))
     throw FemError("dynamic FEM needs dt > 0 and end_time > 0");
@@ -47,10 +53,20 @@ DynamicResult run_dynamic(const DynamicProblem& problem) {
   DynamicResult result;
   const detail::Model model(problem.mesh, problem.material, problem.discretisation);
 
+  if (problem.pulse && !(problem.pulse->duration > 0.0))
+    throw FemError("a traction pulse needs a duration > 0");
+  const auto patch = model.require_boundary(problem.held_group);
   detail::Constraints constraints;
-  for (const auto i : model.boundary_dofs(model.require_boundary(problem.held_group), -1))
-    constraints.add_line(i);
+  if (!problem.pulse)
+    for (const auto i : model.boundary_dofs(patch, -1)) constraints.add_line(i);
   constraints.close();
+  // Nodal load of a unit pressure on the patch (the pulse scales it).
+  dealii::Vector<double> unit_load(model.n_dofs());
+  if (problem.pulse)
+    model.add_pressure(
+        1.0, [patch](const detail::Point&, dealii::types::boundary_id b) { return b == patch ? 1.0 : 0.0; },
+        unit_load);
+  const detail::Vec patch_load = detail::to_trilinos(unit_load, model);
 
   detail::Matrix stiffness, mass, effective;
   model.make_sparse_matrix(stiffness, constraints);
@@ -109,6 +125,7 @@ DynamicResult run_dynamic(const DynamicProblem& problem) {
     w.add(c_v, v);
     w.add(c_a, a);
     mass.vmult(rhs, w);
+    if (problem.pulse) rhs.add(problem.pulse->pressure(n * dt), patch_load);
     u_new = u;
     result.stats.iterations += solver.solve(u_new, rhs);
     // a_new = c_u (u_new - u) - c_v v - c_a a;  v += dt ((1 - gamma) a + gamma a_new)

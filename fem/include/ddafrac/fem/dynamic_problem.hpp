@@ -1,9 +1,11 @@
 #pragma once
 // Contact-free elastodynamics of a disc: the disc moves at v0 towards the plate and the impact
-// patch is held (u = 0) from t = 0, launching the impact waves. Newmark time stepping with a
+// patch is held (u = 0) from t = 0, launching the impact waves; or, as an option, the disc loaded
+// by a prescribed pressure pulse on the patch. Newmark time stepping with a
 // selectable (beta, gamma); consistent mass; the effective matrix and AMG are built once.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,14 @@ struct Newmark {
   double gamma = 0.5;
 };
 
+/// Prescribed pressure pulse on the impact patch instead of holding it: p(t) = peak sin(pi t / T)
+/// for 0 <= t <= T, then 0 (positive pushes into the body). The patch is then free.
+struct TractionPulse {
+  double peak = 0.0;      // Pa
+  double duration = 0.0;  // s, T
+  double pressure(double t) const;
+};
+
 struct GaugePoint {
   std::string name;
   double x = 0.0;  // m
@@ -32,7 +42,10 @@ struct DynamicProblem {
   SolverSettings solver;
   Newmark newmark;
   double v0 = 3.5;                           // m/s, initial speed of the disc towards -y
-  std::string held_group = "impact_patch";   // boundary group held from t = 0
+  std::string held_group = "impact_patch";   // boundary group held from t = 0 (or pulsed)
+  /// If set, the patch is loaded by this pulse instead of held (v0 still sets the initial rigid
+  /// motion; use 0 for a disc at rest).
+  std::optional<TractionPulse> pulse;
   double dt = 1e-7;                          // s
   double end_time = 20e-6;                   // s
   double output_interval = 1e-7;             // s between gauge/energy samples
