@@ -216,12 +216,12 @@ void register_fem_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand("fem", "deal.II continuum reference of the scene's disc (static or impact dynamics)");
   args->scene.add_to(*command);
   command->add_option("--out", args->out, "output directory (default runs/<scene name>/fem)");
-  command->add_option("--degree", args->degree, "polynomial degree (1 or 2)")->check(CLI::Range(1, 2));
-  command->add_option("--refine", args->refine, "uniform refinements of the FEM mesh")->check(CLI::Range(0, 6));
+  command->add_option("--degree", args->degree, "polynomial degree (1 or 2)")->check(CLI::Range(1, 2))->capture_default_str();
+  command->add_option("--refine", args->refine, "uniform refinements of the FEM mesh")->check(CLI::Range(0, 6))->capture_default_str();
   command->add_flag("--quads", args->quads, "quadrilateral cells (FE_Q) instead of triangles (FE_SimplexP)");
   command->add_option("--element-size", args->element_size, "FEM element size in m (default D/25)");
-  command->add_option("--load", args->load, "static diametral load in N per m of thickness");
-  command->add_option("--arc-half-angle", args->arc_half_angle_deg, "Hondros arc half-angle in degrees when the geometry has no load arcs");
+  command->add_option("--load", args->load, "static diametral load in N per m of thickness")->capture_default_str();
+  command->add_option("--arc-half-angle", args->arc_half_angle_deg, "Hondros arc half-angle in degrees when the geometry has no load arcs")->capture_default_str();
   command->add_option("--end-time", args->end_time, "dynamic end time in s (default: the scene's)");
   command->add_option("--dt", args->dt, "dynamic time step in s (default: the scene's dt_max)");
   command->add_option("--pulse", args->pulse_peak,
