@@ -123,6 +123,10 @@ class Engine {
   Engine(scene::Scene scene, const meshes::Mesh& mesh, EngineOptions options = {});
 
   /// One accepted step no longer than max_dt (the driver uses it to land on output times).
+  /// After the step is accepted, the fracture check judges every intact joint on the converged
+  /// state; joints that break are recorded as crack events and become real joints from the next
+  /// step on (the breaking step is not re-solved: a joint carries at most one step's load
+  /// increment beyond its strength, test dda_fracture/tension_break_at_the_tensile_strength).
   /// Throws NumericalTrouble naming the step, time and worst block or contact.
   StepReport step(double max_dt = 1e300);
 
@@ -131,7 +135,7 @@ class Engine {
   double allowed_displacement() const { return allowed_; }
   const scene::Scene& scene() const { return scene_; }
   const BlockSystem& blocks() const { return blocks_; }
-  BlockSystem& blocks() { return blocks_; }  // the fracture check (next issue) breaks joints here
+  BlockSystem& blocks() { return blocks_; }  // tests may break joints before a step (Joint::broken)
   const ContactSet& contacts() const { return set_; }
   const Statistics& statistics() const { return stats_; }
   Statistics& statistics() { return stats_; }
