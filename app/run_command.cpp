@@ -10,13 +10,10 @@
 #include <csignal>
 #include <cstdio>
 #include <memory>
-#include <variant>
 
 #include "commands.hpp"
 #include "figures.hpp"
 #include "ddafrac/dda/run.hpp"
-#include "ddafrac/meshes/generate.hpp"
-#include "ddafrac/meshes/msh_io.hpp"
 #include "ddafrac/scene/parse.hpp"
 #include "scene_source.hpp"
 
@@ -48,7 +45,7 @@ struct RunArguments {
   SceneArguments scene;
   std::string out;
   int threads = 0;
-  std::string solver = "pcg";
+  std::string solver;  // empty: the scene's analysis.solver
   long max_steps = 0;
   bool no_vtk = false;
   bool no_figures = false;
@@ -78,30 +75,16 @@ void show_progress(const dda::Progress& p, bool tty) {
   std::fflush(tty ? stderr : stdout);
 }
 
-meshes::Mesh scene_mesh(const scene::Scene& scene) {
-  try {
-    if (const auto* file = std::get_if<meshes::MshFile>(&scene.geometry)) {
-      meshes::Mesh m = meshes::read_msh(file->path);
-      scene::check_bodies_against_mesh(scene, m.body_names);
-      return m;
-    }
-    return meshes::generate_dda_mesh(scene.geometry, scene.mesh);
-  } catch (const meshes::MeshError& e) {
-    throw CommandFailed(fmt::format("{}: cannot mesh the scene: {}", scene.source.string(), e.what()));
-  } catch (const scene::SceneError& e) {
-    throw CommandFailed(e.what());
-  }
-}
-
 void run_run(const RunArguments& args) {
   const scene::Scene scene = args.scene.load();
   const std::filesystem::path out = output_directory(args.out, scene, "run");
   if (args.threads > 0) omp_set_num_threads(args.threads);
   const int threads = omp_get_max_threads();
 
-  const meshes::Mesh mesh = scene_mesh(scene);
+  const meshes::Mesh mesh = dda_mesh(scene);
   dda::EngineOptions options;
-  options.solver.kind = args.solver == "direct" ? dda::SolverKind::Direct : dda::SolverKind::Pcg;
+  const bool direct = args.solver.empty() ? scene.analysis.solver == scene::Solver::Direct : args.solver == "direct";
+  options.solver.kind = direct ? dda::SolverKind::Direct : dda::SolverKind::Pcg;
   std::unique_ptr<dda::Engine> engine;
   try {
     engine = std::make_unique<dda::Engine>(scene, mesh, options);
@@ -167,7 +150,7 @@ void register_run_command(CLI::App& app) {
   command->add_option("--out", args->out, "run directory (default runs/<scene name>/run)");
   command->add_option("--threads", args->threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
       ->check(CLI::PositiveNumber);
-  command->add_option("--solver", args->solver, "linear solver: pcg (block-Jacobi PCG) or direct (sparse LDLT)")
+  command->add_option("--solver", args->solver, "linear solver: pcg (block-Jacobi PCG) or direct (sparse LDLT); default: the scene's analysis.solver")
       ->check(CLI::IsMember({"pcg", "direct"}));
   command->add_option("--max-steps", args->max_steps, "stop after this many steps (0: run to the end time)");
   command->add_flag("--no-vtk", args->no_vtk, "skip the VTU snapshots");
