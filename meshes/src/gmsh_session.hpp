@@ -14,6 +14,11 @@ class GmshSession {
   ~GmshSession();
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
+
+ private:
+  // gmsh sets the process-wide OpenMP thread count from General.NumThreads; the caller's
+  // count is restored on the way out, or a run after meshing would silently use one thread.
+  int caller_omp_threads_;
 };
 
 /// The last error gmsh logged in this session (empty if none).
