@@ -165,46 +165,30 @@ std::optional<double> TableReader::number(std::string_view key, const NumberRule
 
 std::optional<long long> TableReader::integer(std::string_view key, long long min, long long max, Need need) {
   const std::string expected = fmt::format("a whole number in [{}, {}]", min, max);
-  const toml::node* node = find(key, need, expected);
-  if (!node) return std::nullopt;
-  const auto* integer = node->as_integer();
-  if (!integer) {
-    wrong_type(key, *node, expected);
-    return std::nullopt;
-  }
+  const auto* integer = find_as<std::int64_t>(key, need, expected);
+  if (!integer) return std::nullopt;
   const long long value = integer->get();
   if (value < min || value > max) {
-    diagnostics_->report(node->source(), path_of(key), fmt::format("expected {}, got {}", expected, value));
+    diagnostics_->report(integer->source(), path_of(key), fmt::format("expected {}, got {}", expected, value));
     return std::nullopt;
   }
   return value;
 }
 
 std::optional<bool> TableReader::boolean(std::string_view key, Need need) {
-  const toml::node* node = find(key, need, "true or false");
-  if (!node) return std::nullopt;
-  if (const auto* b = node->as_boolean()) return b->get();
-  wrong_type(key, *node, "true or false");
+  if (const auto* b = find_as<bool>(key, need, "true or false")) return b->get();
   return std::nullopt;
 }
 
-const toml::value<std::string>* TableReader::find_string(std::string_view key, Need need, const std::string& expected) {
-  const toml::node* node = find(key, need, expected);
-  if (!node) return nullptr;
-  const auto* s = node->as_string();
-  if (!s) wrong_type(key, *node, expected);
-  return s;
-}
-
 std::optional<std::string> TableReader::text(std::string_view key, Need need) {
-  if (const auto* s = find_string(key, need, "a string")) return s->get();
+  if (const auto* s = find_as<std::string>(key, need, "a string")) return s->get();
   return std::nullopt;
 }
 
 std::optional<std::string> TableReader::choice(std::string_view key, const std::vector<std::string>& options,
                                                Need need) {
   const std::string expected = "one of " + quoted_list(options);
-  const auto* s = find_string(key, need, expected);
+  const auto* s = find_as<std::string>(key, need, expected);
   if (!s) return std::nullopt;
   if (std::find(options.begin(), options.end(), s->get()) != options.end()) return s->get();
   const std::string hint = closest_match(s->get(), options);
@@ -217,7 +201,7 @@ std::optional<std::string> TableReader::choice(std::string_view key, const std::
 std::optional<std::size_t> TableReader::reference(std::string_view key, const std::vector<std::string>& names,
                                                   std::string_view what, Need need) {
   const std::string expected = fmt::format("the name of one of the {}", what);
-  const auto* s = find_string(key, need, expected);
+  const auto* s = find_as<std::string>(key, need, expected);
   if (!s) return std::nullopt;
   const auto it = std::find(names.begin(), names.end(), s->get());
   if (it != names.end()) return static_cast<std::size_t>(it - names.begin());
@@ -254,13 +238,8 @@ std::optional<std::array<double, 2>> TableReader::vec2(std::string_view key, con
 
 std::optional<std::vector<double>> TableReader::numbers(std::string_view key, const NumberRule& rule, Need need) {
   const std::string expected = "an array of numbers, each " + rule.describe();
-  const toml::node* node = find(key, need, expected);
-  if (!node) return std::nullopt;
-  const auto* array = node->as_array();
-  if (!array) {
-    wrong_type(key, *node, expected);
-    return std::nullopt;
-  }
+  const auto* array = find_as<toml::array>(key, need, expected);
+  if (!array) return std::nullopt;
   std::vector<double> out;
   for (const toml::node& element : *array) {
     const std::optional<double> v = as_double(element);
@@ -277,13 +256,8 @@ std::optional<std::vector<double>> TableReader::numbers(std::string_view key, co
 std::optional<std::vector<std::string>> TableReader::strings(std::string_view key, const std::string& what,
                                                              Need need) {
   const std::string expected = "an array of strings (" + what + ")";
-  const toml::node* node = find(key, need, expected);
-  if (!node) return std::nullopt;
-  const auto* array = node->as_array();
-  if (!array) {
-    wrong_type(key, *node, expected);
-    return std::nullopt;
-  }
+  const auto* array = find_as<toml::array>(key, need, expected);
+  if (!array) return std::nullopt;
   std::vector<std::string> out;
   for (const toml::node& element : *array) {
     const auto* s = element.as_string();
@@ -327,14 +301,9 @@ std::vector<std::string> TableReader::entry_names() const {
 
 std::vector<TableReader> TableReader::table_array(std::string_view key, Need need) {
   const std::string expected = "an array of tables ([[" + path_of(key) + "]])";
-  const toml::node* node = find(key, need, expected);
   std::vector<TableReader> out;
-  if (!node) return out;
-  const auto* array = node->as_array();
-  if (!array) {
-    wrong_type(key, *node, expected);
-    return out;
-  }
+  const auto* array = find_as<toml::array>(key, need, expected);
+  if (!array) return out;
   for (std::size_t i = 0; i < array->size(); ++i) {
     const toml::node& element = *array->get(i);
     if (!element.is_table()) {

@@ -94,7 +94,16 @@ class TableReader {
 
  private:
   const toml::node* find(std::string_view key, Need need, const std::string& expected);
-  const toml::value<std::string>* find_string(std::string_view key, Need need, const std::string& expected);
+  /// The value at `key` as toml++ type T (a toml::value<...>, toml::array, ...), or null after
+  /// reporting it missing (if required) or of the wrong type.
+  template <class T>
+  const auto* find_as(std::string_view key, Need need, const std::string& expected) {
+    const toml::node* node = find(key, need, expected);
+    if (!node) return static_cast<decltype(node->as<T>())>(nullptr);
+    const auto* typed = node->as<T>();
+    if (!typed) wrong_type(key, *node, expected);
+    return typed;
+  }
   void wrong_type(std::string_view key, const toml::node& node, const std::string& expected);
 
   const toml::table* table_;
