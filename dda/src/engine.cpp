@@ -9,28 +9,12 @@
 
 #include "ddafrac/dda/contact_mechanics.hpp"
 #include "ddafrac/dda/geometry.hpp"
+#include "deterministic_sum.hpp"
 
 namespace ddafrac::dda {
 
 namespace {
-/// Blocks per chunk of the deterministic energy sums.
-constexpr std::int64_t kSumChunk = 256;
-
-template <class F>
-double chunked_sum(std::int64_t n, F&& term) {
-  const std::int64_t chunks = (n + kSumChunk - 1) / kSumChunk;
-  std::vector<double> part(static_cast<std::size_t>(chunks), 0.0);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t c = 0; c < chunks; ++c) {
-    double s = 0.0;
-    const std::int64_t end = std::min(n, (c + 1) * kSumChunk);
-    for (std::int64_t i = c * kSumChunk; i < end; ++i) s += term(i);
-    part[c] = s;
-  }
-  double s = 0.0;
-  for (double v : part) s += v;
-  return s;
-}
+using detail::chunked_sum;
 
 class Timer {
  public:

@@ -7,12 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
-namespace ddafrac::dda {
+#include "deterministic_sum.hpp"
 
-namespace {
-/// Blocks per reduction chunk: the chunking, not the thread count, fixes the summation order.
-constexpr std::int64_t kChunk = 256;
-}  // namespace
+namespace ddafrac::dda {
 
 const char* to_string(SolverKind s) { return s == SolverKind::Pcg ? "pcg-block-jacobi" : "eigen-simplicial-ldlt"; }
 
@@ -35,19 +32,7 @@ void multiply(const BlockMatrix& k, const ContactSet& t, const BlockVector& x, B
 }
 
 double dot(const BlockVector& a, const BlockVector& b) {
-  const auto n = static_cast<std::int64_t>(a.size());
-  const std::int64_t chunks = (n + kChunk - 1) / kChunk;
-  std::vector<double> part(static_cast<std::size_t>(chunks), 0.0);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t c = 0; c < chunks; ++c) {
-    double s = 0.0;
-    const std::int64_t end = std::min(n, (c + 1) * kChunk);
-    for (std::int64_t i = c * kChunk; i < end; ++i) s += a[i].dot(b[i]);
-    part[c] = s;
-  }
-  double s = 0.0;
-  for (double v : part) s += v;
-  return s;
+  return detail::chunked_sum(static_cast<std::int64_t>(a.size()), [&](std::int64_t i) { return a[i].dot(b[i]); });
 }
 
 namespace {
