@@ -284,6 +284,19 @@ Output parse_output(TableReader t) {
   return out;
 }
 
+std::optional<Verification> parse_verification(TableReader t) {
+  if (!t.present()) return std::nullopt;
+  Verification v;
+  v.load = t.number("load", NumberRule::positive("N/m"), Need::Optional);
+  const NumberRule relative = NumberRule::positive("relative error");
+  v.centre_stress = t.number("centre_stress", relative, Need::Optional);
+  v.field_l2 = t.number("field_l2", relative, Need::Optional);
+  v.arrival_time = t.number("arrival_time", relative, Need::Optional);
+  v.gauge_rms = t.number("gauge_rms", relative, Need::Optional);
+  t.reject_unknown_keys();
+  return v;
+}
+
 Scene parse_document(const toml::table& document, const std::filesystem::path& file, Diagnostics& diagnostics) {
   toml::source_region top_region{};
   top_region.path = std::make_shared<const std::string>(file.string());
@@ -313,6 +326,7 @@ Scene parse_document(const toml::table& document, const std::filesystem::path& f
 
   scene.gauges = parse_gauges(top.table_array("gauges", Need::Optional), geometry.diameter);
   scene.output = parse_output(top.table("output", Need::Optional));
+  scene.verification = parse_verification(top.table("verification", Need::Optional));
   top.reject_unknown_keys();
   return scene;
 }

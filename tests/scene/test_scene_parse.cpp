@@ -382,3 +382,19 @@ BOOST_AUTO_TEST_CASE(bad_sweep_file_reports_every_problem) {
     BOOST_TEST(e.problems()[0].message.find("two.toml") != std::string::npos);
   }
 }
+
+BOOST_AUTO_TEST_CASE(verification_tolerances_are_read_and_a_missing_table_means_none) {
+  BOOST_TEST(!scene::parse_scene(kValid, "ok.toml").verification.has_value());
+  const scene::Scene s =
+      scene::parse_scene(kValid + "[verification]\nload = 1e6\nfield_l2 = 0.1\narrival_time = 0.05\n", "ok.toml");
+  BOOST_TEST_REQUIRE(s.verification.has_value());
+  BOOST_TEST(s.verification->load.value() == 1e6);
+  BOOST_TEST(s.verification->field_l2.value() == 0.1);
+  BOOST_TEST(s.verification->arrival_time.value() == 0.05);
+  BOOST_TEST(!s.verification->centre_stress.has_value());
+}
+
+BOOST_AUTO_TEST_CASE(negative_verification_tolerance_is_refused) {
+  expect_problem(kValid + "[verification]\ngauge_rms = -0.2\n", "verification.gauge_rms", 72,
+                 "> 0 (relative error), got -0.2");
+}

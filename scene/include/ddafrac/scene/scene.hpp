@@ -73,6 +73,16 @@ struct Output {
   std::vector<double> figure_times;  // s, crack-pattern pictures
 };
 
+/// Pass/fail tolerances of `ddafrac verify` (DESIGN.md §7), relative errors (dimensionless).
+/// A key left out is not checked; `ddafrac verify` says which keys its comparison needs.
+struct Verification {
+  std::optional<double> load;            // N/m, diametral load of a static comparison
+  std::optional<double> centre_stress;   // |σ − σ_ref| / |σ_ref| of centre σxx and σyy
+  std::optional<double> field_l2;        // relative L2 of (σxx, σyy, τxy) at block centroids
+  std::optional<double> arrival_time;    // |t − t_ref| / t_ref of the P-wave arrival at a gauge
+  std::optional<double> gauge_rms;       // RMS(σ − σ_ref) / |peak σ_ref| of a gauge history
+};
+
 struct Scene {
   std::string name;
   std::string description;
