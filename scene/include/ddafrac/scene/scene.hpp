@@ -96,6 +96,7 @@ struct Scene {
   Analysis analysis;
   std::vector<Gauge> gauges;
   Output output;
+  std::optional<Verification> verification;  // [verification]; absent = not a verification case
 
   const Body* find_body(const std::string& name) const;
 };
