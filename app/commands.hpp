@@ -26,6 +26,8 @@ void register_mesh_command(CLI::App& app);   // mesh_command.cpp
 void register_run_command(CLI::App& app);    // run_command.cpp   (DDA engine)
 void register_bench_command(CLI::App& app);  // bench_command.cpp (DDA benchmark)
 void register_sweep_command(CLI::App& app);  // sweep_command.cpp (many runs, one table)
+void register_study_command(CLI::App& app);  // study_command.cpp (`ddafrac study`, parent of the studies)
+void register_study_stability(CLI::App& study);  // study_stability.cpp (`ddafrac study stability`)
 #ifdef DDAFRAC_WITH_FEM
 void register_fem_command(CLI::App& app);    // fem_command.cpp   (deal.II reference)
 #endif

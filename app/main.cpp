@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   ddafrac::app::register_run_command(app);
   ddafrac::app::register_bench_command(app);
   ddafrac::app::register_sweep_command(app);
+  ddafrac::app::register_study_command(app);
 #ifdef DDAFRAC_WITH_FEM
   ddafrac::app::register_fem_command(app);
 #endif

@@ -1,0 +1,21 @@
+// `ddafrac study ...`: the studies of the comparison layer (DESIGN.md §7), one subcommand each.
+// `study stability` needs no deal.II and is always there; the FEM studies (mesh convergence,
+// penalty) register themselves below when the FEM part is built.
+
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+
+namespace ddafrac::app {
+
+void register_study_command(CLI::App& app) {
+  CLI::App* study = app.add_subcommand("study", "studies: stability over stiff and extreme cases (and, with the FEM, convergence)");
+  study->require_subcommand(1);
+  register_study_stability(*study);  // study_stability.cpp
+#ifdef DDAFRAC_WITH_FEM
+  register_study_convergence(*study);  // study_convergence.cpp
+  // FEM studies register here: register_study_penalty(*study);
+#endif
+}
+
+}  // namespace ddafrac::app
