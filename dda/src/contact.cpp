@@ -356,24 +356,52 @@ namespace {
 bool key_less(const Contact& p, const Contact& q) {
   return std::make_tuple(p.pair_low(), p.pair_high(), p.vertex) < std::make_tuple(q.pair_low(), q.pair_high(), q.vertex);
 }
+
+
+/// The previous contact of the same pair at the same vertex-vertex corner with the roles of
+/// vertex and edge swapped (the angle rules may pick the other reference line as the blocks
+/// move), or null.
+const Contact* swapped_corner(const std::vector<Contact>& previous, const Contact& c) {
+  auto pair_less = [](const Contact& p, const Contact& q) {
+    return std::make_pair(p.pair_low(), p.pair_high()) < std::make_pair(q.pair_low(), q.pair_high());
+  };
+  const auto [first, last] = std::equal_range(previous.begin(), previous.end(), c, pair_less);
+  for (auto it = first; it != last; ++it)
+    if (it->vertex_vertex && (it->vertex == c.edge0 || it->vertex == c.edge1) &&
+        (c.vertex == it->edge0 || c.vertex == it->edge1))
+      return &*it;
+  return nullptr;
+}
+
 }  // namespace
 
 void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Contact>& current,
-                            const std::vector<Joint>& joints) {
+                            const std::vector<Joint>& joints, const BlockSystem& blocks) {
   const auto n = static_cast<std::int64_t>(current.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < n; ++k) {
     Contact& c = current[k];
     c.state = c.d0 <= 0.0 || c.bonded(joints) ? ContactState::Locked : ContactState::Open;
+    const Contact* p = nullptr;
     auto it = std::lower_bound(previous.begin(), previous.end(), c, key_less);
-    if (it == previous.end() || key_less(c, *it)) continue;
-    const Contact& p = *it;
-    c.state = p.state;
-    c.normal_force = p.normal_force;
-    c.shear_force = p.shear_force;
-    c.slip = p.slip;
-    c.slide_sign = p.slide_sign;
-    if (p.edge0 == c.edge0 && p.edge1 == c.edge1) c.ref_t = p.ref_t;
+    if (it != previous.end() && !key_less(c, *it)) p = &*it;
+    const bool swapped = !p && c.vertex_vertex && (p = swapped_corner(previous, c)) != nullptr;
+    if (!p) continue;
+    c.state = p->state;
+    c.normal_force = p->normal_force;
+    c.shear_force = p->shear_force;
+    c.slip = p->slip;
+    c.cohesive = p->cohesive;
+    c.cohesive_length = p->cohesive_length;
+    c.slide_sign = p->slide_sign;
+    if (swapped && p->ks > 0.0) {
+      // Measured along the other block's edge the relative slip has the same sign, so the shear
+      // spring keeps its elastic extension f_s/ks: the reference point sits that far behind.
+      const double l = std::hypot(blocks.vx[c.edge1] - blocks.vx[c.edge0], blocks.vy[c.edge1] - blocks.vy[c.edge0]);
+      c.ref_t -= p->shear_force / p->ks / l;
+    } else if (p->edge0 == c.edge0 && p->edge1 == c.edge1) {
+      c.ref_t = p->ref_t;
+    }
   }
 }
 

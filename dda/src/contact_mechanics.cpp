@@ -22,7 +22,34 @@ void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem
     c.kn = js.normal_stiffness > 0.0 ? js.normal_stiffness : scene.analysis.penalty;
     c.ks = js.shear_stiffness;
     c.tan_phi = std::tan(js.friction_angle);
+    c.cohesion = js.cohesion;
+    c.tensile_strength = js.tensile_strength;
   }
+}
+
+double cohesive_length(const Contact& c, const BlockSystem& s, double angle_tolerance) {
+  const double x2 = s.vx[c.edge0], y2 = s.vy[c.edge0];
+  const double dx = s.vx[c.edge1] - x2, dy = s.vy[c.edge1] - y2;
+  const double l2 = dx * dx + dy * dy;
+  const double l = std::sqrt(l2);
+  const auto b = static_cast<std::size_t>(c.vblock);
+  const Index first = s.begin(b), last = s.end(b);
+  const Index previous = c.vertex == first ? last - 1 : c.vertex - 1;
+  const Index next = c.vertex + 1 == last ? first : c.vertex + 1;
+  double overlap = 0.0;
+  for (const Index other : {previous, next}) {
+    const double ex = s.vx[other] - s.vx[c.vertex], ey = s.vy[other] - s.vy[c.vertex];
+    const double le = std::hypot(ex, ey);
+    // The faces of two CCW blocks in contact run in opposite directions; the vertex's edge
+    // bonds only if it lies along the reference edge (a corner on a face has no face to bond).
+    const double sine = std::abs(ex * dy - ey * dx) / (le * l);
+    if (le == 0.0 || sine > std::sin(angle_tolerance)) continue;
+    const double ta = ((s.vx[c.vertex] - x2) * dx + (s.vy[c.vertex] - y2) * dy) / l2;
+    const double tb = ((s.vx[other] - x2) * dx + (s.vy[other] - y2) * dy) / l2;
+    const double along = std::min(1.0, std::max(ta, tb)) - std::max(0.0, std::min(ta, tb));
+    overlap = std::max(overlap, along * l);
+  }
+  return 0.5 * overlap;
 }
 
 double normal_gap(double x1, double y1, double x2, double y2, double x3, double y3) {
@@ -81,32 +108,51 @@ ContactCoefficients contact_coefficients(const Contact& c) {
   return k;
 }
 
+namespace {
+
+/// Open or closed with Mohr-Coulomb friction (no cohesion): the state of an ordinary contact
+/// with gap d and shear s; fn receives its normal force (compression positive).
+ContactState judge_frictional(Contact& c, double d, double s, double tol, double& fn) {
+  if (d > (c.trial == ContactState::Open ? 0.0 : tol)) {
+    fn = 0.0;
+    return ContactState::Open;
+  }
+  fn = std::max(0.0, -c.kn * d);
+  // Elastic predictor (return mapping) on the shear spring measured from the reference
+  // point: the contact slides while the spring would carry more than the friction limit in the
+  // sliding direction. Judging a sliding contact by the direction of its step increment
+  // instead would lock a contact whose carried shear exceeds a shrinking limit (fn falling)
+  // while it unloads slightly, and the locked solution would send it back to sliding.
+  const double limit = c.tan_phi * fn;
+  if (c.trial == ContactState::Sliding)
+    return c.ks * s * c.slide_sign < limit - c.ks * tol ? ContactState::Locked : ContactState::Sliding;
+  if (std::abs(c.ks * s) > limit + c.ks * tol) {
+    c.slide_sign = s >= 0.0 ? 1.0 : -1.0;
+    return ContactState::Sliding;
+  }
+  return ContactState::Locked;
+}
+
+/// An intact cohesive joint holds (stays locked) while its tension and shear stay within
+/// σt·l_c and c·l_c + fn·tanφ.
+bool cohesion_holds(const Contact& c, double fn, double s) {
+  const double tension_limit = c.tensile_strength * c.cohesive_length;
+  const double shear_limit = c.cohesion * c.cohesive_length + c.tan_phi * std::max(fn, 0.0);
+  return -fn <= tension_limit && std::abs(c.ks * s) <= shear_limit;
+}
+
+}  // namespace
+
 bool judge_contact(Contact& c, const Vec6& dv, const Vec6& de, bool bonded, double tol) {
   const double d = c.d0 + c.e.dot(dv) + c.g.dot(de);
   const double s = c.s0 + c.es.dot(dv) + c.gs.dot(de);
-  ContactState next;
-  double fn = 0.0;
-  if (bonded) {
-    next = ContactState::Locked;
-    fn = -c.kn * d;
-  } else if (d > (c.trial == ContactState::Open ? 0.0 : tol)) {
-    next = ContactState::Open;
-  } else {
-    fn = std::max(0.0, -c.kn * d);
-    // Elastic predictor (return mapping) on the shear spring measured from the reference
-    // point: the contact slides while the spring would carry more than the friction limit in the
-    // sliding direction. Judging a sliding contact by the direction of its step increment
-    // instead would lock a contact whose carried shear exceeds a shrinking limit (fn falling)
-    // while it unloads slightly, and the locked solution would send it back to sliding.
-    const double limit = c.tan_phi * fn;
-    if (c.trial == ContactState::Sliding) {
-      next = c.ks * s * c.slide_sign < limit - c.ks * tol ? ContactState::Locked : ContactState::Sliding;
-    } else if (std::abs(c.ks * s) > limit + c.ks * tol) {
-      next = ContactState::Sliding;
-      c.slide_sign = s >= 0.0 ? 1.0 : -1.0;
-    } else {
-      next = ContactState::Locked;
-    }
+  ContactState next = ContactState::Locked;
+  double fn = -c.kn * d;
+  if (!bonded) {
+    // A cohesive joint that fails stays failed for the rest of the step's iterations (and for
+    // good once the step is accepted): the iteration then cannot cycle on its strength.
+    if (c.cohesive && !c.cohesion_lost && !cohesion_holds(c, fn, s)) c.cohesion_lost = true;
+    if (!c.cohesive || c.cohesion_lost) next = judge_frictional(c, d, s, tol, fn);
   }
   const bool changed = next != c.trial;
   c.trial = next;
@@ -118,6 +164,8 @@ bool judge_contact(Contact& c, const Vec6& dv, const Vec6& de, bool bonded, doub
 
 void commit_contact(Contact& c) {
   c.state = c.trial;
+  if (c.cohesion_lost) c.cohesive = false;
+  c.cohesion_lost = false;
   c.normal_force = c.fn_iter;
   switch (c.state) {
     case ContactState::Open: c.shear_force = 0.0; break;

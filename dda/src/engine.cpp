@@ -39,6 +39,7 @@ std::vector<std::string> ActiveTerms::names() const {
   if (anchors) n.push_back("fixed/prescribed points");
   if (contacts) n.push_back("contact springs");
   if (friction) n.push_back("friction (sliding contacts)");
+  if (cohesion) n.push_back("cohesion and tension of real joints closed at t = 0");
   if (bonded_joints) n.push_back("bonded virtual joints");
   if (fracture) n.push_back("fracture check");
   if (damping) n.push_back("mass damping");
@@ -108,7 +109,7 @@ void Engine::trouble(const std::string& what) const {
 
 void Engine::detect() {
   std::vector<Contact> found = detect_contacts(blocks_, options_.detection, detection_);
-  transfer_contact_state(set_.contacts, found, blocks_.joints);
+  transfer_contact_state(set_.contacts, found, blocks_.joints, blocks_);
   assign_contact_properties(found, blocks_, scene_);
   set_.contacts = std::move(found);
   build_contact_topology(set_, blocks_.block_count());
@@ -117,11 +118,23 @@ void Engine::detect() {
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < nc; ++k) {
     Contact& c = set_.contacts[k];
-    if (c.bonded(blocks_.joints)) c.state = ContactState::Locked;
+    const bool bonded = c.bonded(blocks_.joints);
+    if (bonded) c.state = ContactState::Locked;
+    if (step_ == 0 && !bonded && c.state != ContactState::Open) start_cohesive(c);
     linearise_contact(c, blocks_);
     saved_slide_sign_[k] = c.slide_sign;
   }
   if (nc > 0) active_.contacts = true;
+  if (step_ == 0)
+    active_.cohesion = std::any_of(set_.contacts.begin(), set_.contacts.end(), [](const Contact& c) { return c.cohesive; });
+}
+
+void Engine::start_cohesive(Contact& c) const {
+  // Real joints closed at t = 0 are the pre-existing joints of the rock mass; contacts made
+  // later (impacts, re-closing cracks) and broken virtual joints never get cohesion.
+  if (c.cohesion <= 0.0 && c.tensile_strength <= 0.0) return;
+  c.cohesive_length = cohesive_length(c, blocks_, options_.detection.angle_tolerance);
+  c.cohesive = c.cohesive_length > 0.0;
 }
 
 void Engine::reset_trials() {
@@ -132,6 +145,7 @@ void Engine::reset_trials() {
     c.trial = c.state;
     c.fn_iter = c.normal_force;
     c.slide_sign = saved_slide_sign_[k];
+    c.cohesion_lost = false;
   }
 }
 
@@ -242,12 +256,15 @@ void Engine::accept(double dt) {
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
   const auto nc = static_cast<std::int64_t>(set_.contacts.size());
   bool sliding = false;
-#pragma omp parallel for schedule(static) reduction(|| : sliding)
+  long cohesion_lost = 0;
+#pragma omp parallel for schedule(static) reduction(|| : sliding) reduction(+ : cohesion_lost)
   for (std::int64_t k = 0; k < nc; ++k) {
+    if (set_.contacts[k].cohesion_lost) ++cohesion_lost;
     commit_contact(set_.contacts[k]);
     if (set_.contacts[k].state == ContactState::Sliding) sliding = true;
   }
   if (sliding) active_.friction = true;
+  stats_.cohesion_failures += cohesion_lost;
   const bool dynamic = active_.dynamic;
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {

@@ -118,6 +118,7 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
              {"mean", st.solves > 0 ? static_cast<double>(st.cg_total) / static_cast<double>(st.solves) : 0.0},
              {"max", st.cg_max}};
   j["max_penetration"] = st.max_penetration;
+  j["cohesion_failures"] = st.cohesion_failures;
   j["contacts"] = e.contacts().contacts.size();
   j["active_terms"] = e.active_terms().names();
   const CrackCounts& cc = e.crack_counts();

@@ -308,3 +308,125 @@ BOOST_AUTO_TEST_CASE(gauges_find_their_block_or_fail_clearly) {
     return std::string(error.what()).find("gauge 'outside'") != std::string::npos;
   });
 }
+
+// --- Cohesion and tension of real joints (issue 3) ------------------------------------------
+// Two squares whose shared edge is a real joint closed at t = 0 (not bonded: no fracture check).
+// The joint face is carried by one vertex-edge contact at each end of the edge, each with half the
+// face (l_c = h/2), so the pair holds a tension σt·h and a shear c·h + f_n·tanφ, and after its
+// first failure friction only.
+namespace {
+
+struct PairForce {
+  double tension = 0.0;  // N/m, Σ −f_n over the pair's closed contacts
+  double shear = 0.0;    // N/m, Σ |f_s|
+  double compression = 0.0;
+  int cohesive = 0;
+};
+
+PairForce pair_force(const Engine& e) {
+  PairForce f;
+  for (const Contact& c : e.contacts().contacts) {
+    if (c.cohesive) ++f.cohesive;
+    if (c.state == ContactState::Open) continue;
+    f.tension -= c.normal_force;
+    f.compression += std::max(0.0, c.normal_force);
+    f.shear += std::abs(c.shear_force);
+  }
+  return f;
+}
+
+Engine cohesive_pair(double h, double tensile, double cohesion, double phi_deg, double vx, double vy) {
+  scene::Scene sc = joint_scene(1e-6, 1e10, 1e7, 1e7, 30.0);
+  scene::JointSet& real = sc.joint_sets[1];
+  real.tensile_strength = tensile;
+  real.cohesion = cohesion;
+  real.friction_angle = phi_deg * kPi / 180.0;
+  EngineOptions opt;
+  opt.bond_virtual_joints = false;
+  hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
+  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, vx, vy);
+  return Engine(sc, two_squares(h), opt);
+}
+
+}  // namespace
+
+// Pulled apart: the pair carries tension up to σt·h (within one step's force increment) and none
+// once it has failed; both contacts lose their cohesion together.
+BOOST_AUTO_TEST_CASE(real_joint_holds_tension_up_to_its_strength) {
+  const double h = 0.01, sigma_t = 1e6;
+  Engine e = cohesive_pair(h, sigma_t, 1e7, 30.0, 0.01, 0.0);
+  e.step();
+  BOOST_TEST_REQUIRE(pair_force(e).cohesive == 2);
+  BOOST_TEST(e.active_terms().cohesion);
+  double peak = 0.0, increment = 0.0, previous = 0.0;
+  int failed_at = -1;
+  for (int k = 2; k <= 5000 && failed_at < 0; ++k) {
+    e.step();
+    const PairForce f = pair_force(e);
+    if (f.cohesive == 0) failed_at = k;
+    else {
+      increment = f.tension - previous;
+      previous = f.tension;
+      peak = std::max(peak, f.tension);
+    }
+  }
+  BOOST_TEST_MESSAGE("cohesive tension: peak " << peak << " N/m vs σt·h " << sigma_t * h << " N/m, increment "
+                                               << increment << " N/m, failed at step " << failed_at);
+  BOOST_TEST_REQUIRE(failed_at > 1);
+  BOOST_TEST(peak <= sigma_t * h);
+  BOOST_TEST(peak >= sigma_t * h - increment);
+  BOOST_TEST(increment < 0.05 * sigma_t * h);
+  BOOST_TEST(e.statistics().cohesion_failures == 2);
+  for (int k = 0; k < 20; ++k) e.step();
+  BOOST_TEST(pair_force(e).tension <= 0.0);
+}
+
+// Pushed together and slid: the shear carried peaks at c·h + f_n·tanφ; once cohesion is lost
+// the shear never exceeds the friction f_n·tanφ again (the stress drop sets off a stick-slip
+// oscillation, so it is not constant), and every sliding contact sits at it.
+BOOST_AUTO_TEST_CASE(real_joint_holds_shear_up_to_cohesion_plus_friction) {
+  const double h = 0.01, cohesion = 1e6, phi = 20.0;
+  const double tan_phi = std::tan(phi * kPi / 180.0);
+  Engine e = cohesive_pair(h, 1e5, cohesion, phi, -0.01, 0.02);
+  double worst_excess = -1e300, peak_ratio = 0.0;
+  int failed_at = -1;
+  for (int k = 1; k <= 5000 && failed_at < 0; ++k) {
+    e.step();
+    const PairForce f = pair_force(e);
+    if (f.cohesive == 0) {
+      failed_at = k;
+      break;
+    }
+    const double limit = cohesion * h + f.compression * tan_phi;
+    worst_excess = std::max(worst_excess, f.shear - limit);
+    peak_ratio = std::max(peak_ratio, f.shear / limit);
+  }
+  double friction_excess = 0.0, sliding_error = 0.0;
+  int sliding_steps = 0;
+  for (int k = 0; k < 2000; ++k) {
+    e.step();
+    for (const Contact& c : e.contacts().contacts) {
+      if (c.state == ContactState::Open) continue;
+      const double friction = c.normal_force * tan_phi;
+      friction_excess = std::max(friction_excess, std::abs(c.shear_force) - friction);
+      if (c.state == ContactState::Sliding) {
+        ++sliding_steps;
+        sliding_error = std::max(sliding_error, std::abs(std::abs(c.shear_force) - friction) / friction);
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("cohesive shear: failed at step " << failed_at << ", peak |f_s|/limit " << peak_ratio
+                                                       << "; after: largest |f_s| - f_n·tanφ "
+                                                       << friction_excess << " N/m, " << sliding_steps
+                                                       << " sliding contact-steps within " << sliding_error);
+  BOOST_TEST_REQUIRE(failed_at > 1);
+  BOOST_TEST(worst_excess <= 0.0);
+  BOOST_TEST(peak_ratio >= 0.95);  // the shear did build up to the limit before failing
+  BOOST_TEST(e.statistics().cohesion_failures == 2);
+  // Locked contacts may exceed friction only by the open-close hysteresis band ks·tol (tol =
+  // state_tolerance × the allowed step displacement; 100 N/m here, 2% of the friction).
+  const double band = 0.4 * 1e10 * e.options().state_tolerance * e.allowed_displacement();
+  BOOST_TEST(friction_excess <= band);
+  BOOST_TEST(sliding_steps > 0);
+  BOOST_TEST(sliding_error <= 1e-9);
+}

@@ -31,9 +31,14 @@ struct Contact {
   double shear_force = 0.0;   // N/m
   double slip = 0.0;          // accumulated sliding displacement, m
   double slide_sign = 0.0;    // direction of sliding along the edge (+1/-1)
+  // Cohesive real joint (closed at t = 0, never failed): carries tension up to σt·l_c and shear
+  // up to c·l_c + fn·tanφ; once either is exceeded it keeps friction only, for good.
+  bool cohesive = false;
+  double cohesive_length = 0.0;  // l_c, m: this contact's share of the joint face
   // Properties.
   double kn = 0.0, ks = 0.0;  // penalty springs, N/m
   double tan_phi = 0.0;
+  double cohesion = 0.0, tensile_strength = 0.0;  // Pa, of the joint set (used while cohesive)
   // Per step (geometry at step start): gap, shear and their linearisations.
   double d0 = 0.0;        // normal gap, m, positive = apart
   double s0 = 0.0;        // shear displacement from the reference point along the edge, m
@@ -44,6 +49,7 @@ struct Contact {
   ContactState trial = ContactState::Open;  // state assumed by the current assembly
   double fn_iter = 0.0;                     // normal force of the latest solve, N/m
   double d_iter = 0.0, s_iter = 0.0;        // gap and shear of the latest solve, m
+  bool cohesion_lost = false;               // a cohesive contact failed in this step's iterations
 
   bool bonded(const std::vector<Joint>& joints) const {
     return joint >= 0 && !joints[static_cast<std::size_t>(joint)].broken;
@@ -102,11 +108,12 @@ struct DetectionWorkspace {
 std::vector<Contact> detect_contacts(const BlockSystem& blocks, const DetectionParams& params,
                                      DetectionWorkspace& work);
 
-/// Carries state (state, reference point, forces, slip) from the previous list to contacts of
-/// the same vertex and block pair; new contacts start closed (locked) if they touch or are
-/// bonded joints, else open (a broken joint starts like a contact that was never bonded).
+/// Carries state (state, reference point, forces, slip, cohesion) from the previous list to contacts of
+/// the same vertex and block pair, or of the same vertex-vertex corner with vertex and edge
+/// swapped; new contacts start closed (locked) if they touch or are bonded joints, else open (a
+/// broken joint starts like a contact that was never bonded).
 void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Contact>& current,
-                            const std::vector<Joint>& joints);
+                            const std::vector<Joint>& joints, const BlockSystem& blocks);
 
 /// Fills pairs and per-block lists of a sorted contact list.
 void build_contact_topology(ContactSet& set, std::size_t block_count);

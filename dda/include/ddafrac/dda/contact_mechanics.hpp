@@ -17,6 +17,12 @@ namespace ddafrac::dda {
 void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem& blocks,
                                const scene::Scene& scene);
 
+/// l_c of a cohesive contact: half the overlap of the reference edge with the vertex's own edge
+/// that lies along it (within `angle_tolerance`, rad). A face bonded along its length has a
+/// vertex-edge contact at each end, so the halves add up to the face; a corner touching a face
+/// has no face along it and gets 0.
+double cohesive_length(const Contact& c, const BlockSystem& blocks, double angle_tolerance);
+
 /// Normal gap, shear displacement from the locked reference point, and their gradients with
 /// respect to the unknowns of both blocks, from the current geometry. Open contacts
 /// move their reference point to the current projection (s0 = 0).
@@ -35,6 +41,9 @@ ContactCoefficients contact_coefficients(const Contact& c);
 
 /// Judges one contact from the solution of its two blocks; returns true if its state changed.
 /// Bonded contacts stay locked (they carry tension; breaking is the fracture check's job).
+/// Cohesive contacts (intact real joints) stay locked, tension included, while the tension is
+/// within σt·l_c and the shear within c·l_c + fn·tanφ; beyond either they lose cohesion and
+/// tension for good (commit_contact) and are judged as ordinary frictional contacts.
 /// Shear is an elastic-plastic spring measured from the reference point (return mapping): a
 /// closed contact slides while ks·|s| exceeds tanφ·fn, in the direction of s; a sliding contact
 /// keeps its elastic part at the limit and its reference point follows the plastic slip.

@@ -101,14 +101,15 @@ struct Statistics {
   long solves = 0, cg_total = 0;
   int cg_max = 0;
   double max_penetration = 0.0;
+  long cohesion_failures = 0;  // cohesive real-joint contacts that lost cohesion and tension
   PhaseTimes times;
 };
 
 /// Which terms the time loop composed (summary.json lists them).
 struct ActiveTerms {
   bool dynamic = true, elasticity = true, initial_stress = true, gravity = false, point_loads = false,
-       anchors = false, contacts = false, friction = false, bonded_joints = false, fracture = false,
-       damping = false;
+       anchors = false, contacts = false, friction = false, cohesion = false, bonded_joints = false,
+       fracture = false, damping = false;
   std::vector<std::string> names() const;
 };
 
@@ -164,6 +165,7 @@ class Engine {
 
  private:
   void detect();
+  void start_cohesive(Contact& c) const;
   void block_terms(double dt);
   void assemble();
   bool judge(int& changed_first);
