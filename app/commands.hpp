@@ -30,6 +30,8 @@ void register_study_command(CLI::App& app);  // study_command.cpp (`ddafrac stud
 void register_study_stability(CLI::App& study);  // study_stability.cpp (`ddafrac study stability`)
 #ifdef DDAFRAC_WITH_FEM
 void register_fem_command(CLI::App& app);    // fem_command.cpp   (deal.II reference)
+void register_verify_command(CLI::App& app);  // verify_command.cpp (DDA vs FEM vs analytic, PASS/FAIL)
+void register_study_convergence(CLI::App& study);  // study_convergence.cpp (`ddafrac study convergence`)
 #endif
 
 }  // namespace ddafrac::app

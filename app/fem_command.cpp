@@ -16,9 +16,10 @@
 #include <variant>
 
 #include "commands.hpp"
+#include "fem_environment.hpp"
 #include "ddafrac/common/whole_file.hpp"
+#include "ddafrac/coupling/scene_fem.hpp"
 #include "ddafrac/fem/dynamic_problem.hpp"
-#include "ddafrac/fem/environment.hpp"
 #include "ddafrac/fem/static_problem.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "scene_source.hpp"
@@ -49,27 +50,6 @@ struct FemArguments {
   double pulse_duration = 4e-6;    // s
 };
 
-double diameter_of(const meshes::Geometry& g) {
-  if (const auto* d = std::get_if<meshes::PlainDisc>(&g)) return d->diameter;
-  if (const auto* d = std::get_if<meshes::FlattenedDisc>(&g)) return d->diameter;
-  if (const auto* d = std::get_if<meshes::SlitDisc>(&g)) return d->diameter;
-  if (const auto* d = std::get_if<meshes::ImpactDisc>(&g)) return d->diameter;
-  throw CommandFailed("ddafrac fem needs a generated disc geometry (not a user .msh file)");
-}
-
-fem::Material material_of(const scene::Scene& s) {
-  const scene::Body* disc = nullptr;
-  for (const auto& b : s.bodies)
-    if (b.role == scene::Role::Disc) disc = &b;
-  if (!disc) throw CommandFailed("the scene has no disc body");
-  const auto& m = s.materials.at(disc->material);
-  fem::Material out;
-  out.elastic = {m.young, m.poisson, m.density};
-  out.plane = s.analysis.plane == scene::PlaneModel::Strain ? fem::PlaneModel::Strain
-                                                            : fem::PlaneModel::Stress;
-  return out;
-}
-
 /// Under mpirun every rank computes; rank 0 alone writes the run directory and prints.
 bool is_root() { return fem::Environment::rank() == 0; }
 
@@ -90,10 +70,10 @@ nlohmann::json stats_json(const fem::RunStats& s) {
 
 nlohmann::json run_static(const FemArguments& args, const scene::Scene& s, meshes::Mesh mesh,
                           const std::filesystem::path& out) {
-  const double d = diameter_of(s.geometry);
+  const double d = coupling::disc_diameter(s.geometry);
   fem::StaticProblem problem;
   problem.mesh = std::move(mesh);
-  problem.material = material_of(s);
+  problem.material = coupling::disc_material(s);
   problem.discretisation = {args.degree, args.refine};
   nlohmann::json load;
   if (const auto* flattened = std::get_if<meshes::FlattenedDisc>(&s.geometry)) {
@@ -139,7 +119,7 @@ nlohmann::json run_dynamic(const FemArguments& args, const scene::Scene& s, mesh
                            const std::filesystem::path& out) {
   fem::DynamicProblem problem;
   problem.mesh = std::move(mesh);
-  problem.material = material_of(s);
+  problem.material = coupling::disc_material(s);
   problem.discretisation = {args.degree, args.refine};
   for (const auto& b : s.bodies)
     if (b.role == scene::Role::Disc) problem.v0 = std::hypot(b.initial_velocity[0], b.initial_velocity[1]);
@@ -171,16 +151,12 @@ nlohmann::json run_dynamic(const FemArguments& args, const scene::Scene& s, mesh
 }
 
 void run_fem(const FemArguments& args) {
-  int argc = 1;
-  char name[] = "ddafrac";
-  char* argv_storage[] = {name, nullptr};
-  char** argv = argv_storage;
-  const fem::Environment environment(argc, argv);
+  const auto environment = start_fem_environment();
   const scene::Scene s = args.scene.load();
   const auto out = output_directory(args.out, s, "fem");
   if (is_root()) std::filesystem::create_directories(out);
   const auto start = std::chrono::steady_clock::now();
-  const double size = args.element_size > 0.0 ? args.element_size : diameter_of(s.geometry) / elements_per_diameter;
+  const double size = args.element_size > 0.0 ? args.element_size : coupling::disc_diameter(s.geometry) / elements_per_diameter;
   meshes::Geometry geometry = s.geometry;
   if (auto* flat = std::get_if<meshes::FlattenedDisc>(&geometry)) flat->with_platens = false;
   nlohmann::json summary;

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   ddafrac::app::register_study_command(app);
 #ifdef DDAFRAC_WITH_FEM
   ddafrac::app::register_fem_command(app);
+  ddafrac::app::register_verify_command(app);
 #endif
 
   try {

@@ -254,6 +254,9 @@ def main():
     sweep.add_argument("--out", required=True)
     sweep.add_argument("--crack-interval", type=float, default=150e-6)
     sweep.set_defaults(draw=draw_sweep)
+    import verify_plots  # noqa: E402  (beside this script)
+
+    verify_plots.register(commands, save)
     args = parser.parse_args()
     args.draw(args)
 
