@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <memory>
@@ -81,6 +82,7 @@ void run_run(const RunArguments& args) {
   if (args.threads > 0) omp_set_num_threads(args.threads);
   const int threads = omp_get_max_threads();
 
+  const auto setup_start = std::chrono::steady_clock::now();
   const meshes::Mesh mesh = dda_mesh(scene);
   dda::EngineOptions options;
   const bool direct = args.solver.empty() ? scene.analysis.solver == scene::Solver::Direct : args.solver == "direct";
@@ -100,6 +102,7 @@ void run_run(const RunArguments& args) {
   dda::RunOptions ro;
   ro.out_dir = out;
   ro.threads = threads;
+  ro.setup_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
   ro.max_steps = args.max_steps;
   ro.vtk = scene.output.vtk && !args.no_vtk;
   ro.progress_every = tty ? 0.2 : 5.0;

@@ -72,7 +72,7 @@ std::string pvd_document(const std::vector<Snapshot>& snaps) {
   return s;
 }
 
-nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResult& r, double setup_wall,
+nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResult& r,
                             const nlohmann::json& loading) {
   using nlohmann::json;
   const auto& sc = e.scene();
@@ -98,7 +98,7 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
   j["allowed_step_displacement"] = e.allowed_displacement();
   j["contact_search_distance"] = e.options().detection.search_distance;
   const PhaseTimes& t = st.times;
-  j["wall_time"] = {{"setup", setup_wall},     {"detection", t.detection}, {"assembly", t.assembly},
+  j["wall_time"] = {{"setup", o.setup_wall},     {"detection", t.detection}, {"assembly", t.assembly},
                     {"solve", t.solve},        {"judgement", t.judgement}, {"fracture", t.fracture},
                     {"update", t.update},
                     {"output", t.output},      {"total", r.wall}};
@@ -201,7 +201,6 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
   std::string history = history_header();
   std::vector<Snapshot> snaps;
   Statistics& st = engine.statistics();
-  const double setup_wall = 0.0;
   const scene::Scene& sc = engine.scene();
   const double crack_width = sc.output.crack_interval > 0.0 ? sc.output.crack_interval : end;
 
@@ -254,7 +253,7 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
     r.wall = omp_get_wtime() - t0;
     r.steps = st.steps;
     r.time = engine.time();
-    ddafrac::common::write_whole_text(o.out_dir / "summary.json", summary_json(engine, o, r, setup_wall, {{"peak", peaks}, {"unit", "N/m"}}).dump(2) + "\n");
+    ddafrac::common::write_whole_text(o.out_dir / "summary.json", summary_json(engine, o, r, {{"peak", peaks}, {"unit", "N/m"}}).dump(2) + "\n");
   };
 
   r.reason = "running";

@@ -26,6 +26,7 @@ struct Progress {
 struct RunOptions {
   std::filesystem::path out_dir;
   int threads = 1;          // recorded in summary.json (the caller sets the OpenMP thread count)
+  double setup_wall = 0.0;  // s the caller spent meshing and building the engine (summary.json)
   long max_steps = 0;       // stop after this many steps (0: run to the scene's end time)
   int history_every = 1;    // history.csv row every N accepted steps
   bool vtk = true;          // snapshots at every output interval
