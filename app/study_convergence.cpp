@@ -32,7 +32,7 @@ struct ConvergenceArguments {
   std::vector<int> blocks{500, 1000, 2000, 4000};
   int threads = 1;
   int degree = 2;
-  int fem_refine = 1;
+  std::vector<int> fem_refine{1};  // one value for every level, or one per level
   double stiffness_ratio = 100.0;
   bool no_figures = false;
 };
@@ -40,6 +40,9 @@ struct ConvergenceArguments {
 struct Level {
   int target = 0;
   long blocks = 0, steps = 0;
+  int fem_refine = 0;
+  long fem_dofs = 0;
+  double fem_vs_analytic = std::nan("");  // field L2 of the FEM against the analytic solution, if any
   double dda_wall = 0.0, fem_wall = 0.0;
   bool passed = false;
   std::vector<double> errors;  // one per check, in the order of the first level's checks
@@ -69,16 +72,20 @@ void run_convergence(const ConvergenceArguments& args) {
   const scene::Scene base = args.scene.load();
   const auto out = output_directory(args.out, base, "convergence");
   std::filesystem::create_directories(out);
+  if (args.fem_refine.size() != 1 && args.fem_refine.size() != args.blocks.size())
+    throw CommandFailed(fmt::format("--fem-refine takes one value or one per level ({} levels, {} values)", args.blocks.size(),
+                                    args.fem_refine.size()));
   std::vector<Level> levels;
   std::vector<std::string> names;
-  for (const int target : args.blocks) {
+  for (std::size_t index = 0; index < args.blocks.size(); ++index) {
+    const int target = args.blocks[index];
     scene::Scene s = base;
     s.mesh.target_blocks = target;
     coupling::VerifyOptions options;
     options.out_dir = out / fmt::format("blocks_{}", target);
     options.threads = args.threads;
     options.fem_degree = args.degree;
-    options.fem_refine = args.fem_refine;
+    options.fem_refine = args.fem_refine.size() == 1 ? args.fem_refine[0] : args.fem_refine[index];
     options.stiffness_ratio = args.stiffness_ratio;
     options.figures = !args.no_figures;
     options.quiet = true;
@@ -91,12 +98,15 @@ void run_convergence(const ConvergenceArguments& args) {
     level.dda_wall = report.dda_wall;
     level.fem_wall = report.fem_wall;
     level.passed = report.passed();
+    level.fem_refine = options.fem_refine;
     std::ifstream in(options.out_dir / "comparison.json");
     if (in) {
       const auto j = nlohmann::json::parse(in, nullptr, false);
       if (j.is_object()) {
         level.blocks = j.value("blocks", static_cast<long>(target));
         level.steps = j.value("steps", 0L);
+        level.fem_dofs = j.value("fem_dofs", 0L);
+        level.fem_vs_analytic = j.value("field_l2_fem_vs_analytic", std::nan(""));
       }
     }
     if (names.empty())
@@ -131,26 +141,28 @@ void run_convergence(const ConvergenceArguments& args) {
     }
 
   std::ostringstream csv;
-  csv << "target,blocks,steps,dda_wall,fem_wall,passed";
+  csv << "target,blocks,steps,dda_wall,fem_refine,fem_dofs,fem_wall,fem_l2_vs_analytic,passed";
   for (const auto& n : names) csv << "," << csv_name(n);
   csv << "\n";
   for (const auto& l : levels) {
-    csv << fmt::format("{},{},{},{:.6g},{:.6g},{}", l.target, l.blocks, l.steps, l.dda_wall, l.fem_wall, l.passed ? 1 : 0);
+    csv << fmt::format("{},{},{},{:.6g},{},{},{:.6g},{:.6g},{}", l.target, l.blocks, l.steps, l.dda_wall, l.fem_refine, l.fem_dofs,
+                       l.fem_wall, l.fem_vs_analytic, l.passed ? 1 : 0);
     for (const double e : l.errors) csv << fmt::format(",{:.6g}", e);
     csv << "\n";
   }
   common::write_whole_text(out / "convergence.csv", csv.str());
 
   std::ostringstream md;
-  md << fmt::format("# Convergence: {}\n\nScene `{}`; DDA kn = {}·E; FEM P{} with {} refinement(s); {} thread(s).\n\n", base.name,
-                    base.source.string(), args.stiffness_ratio, args.degree, args.fem_refine, args.threads);
-  md << "| blocks | steps | DDA wall (s) | FEM wall (s) |";
+  md << fmt::format("# Convergence: {}\n\nScene `{}`; DDA kn = {}·E; FEM P{} (refinements per level in the table); {} thread(s).\n\n",
+                    base.name, base.source.string(), args.stiffness_ratio, args.degree, args.threads);
+  md << "| blocks | steps | DDA wall (s) | FEM k | FEM dofs | FEM wall (s) | FEM vs analytic |";
   for (const auto& n : names) md << " " << n << " |";
-  md << "\n|---|---|---|---|";
+  md << "\n|---|---|---|---|---|---|---|";
   for (std::size_t k = 0; k < names.size(); ++k) md << "---|";
   md << "\n";
   for (const auto& l : levels) {
-    md << fmt::format("| {} | {} | {:.2f} | {:.2f} |", l.blocks, l.steps, l.dda_wall, l.fem_wall);
+    md << fmt::format("| {} | {} | {:.2f} | {} | {} | {:.2f} | {:.4f} |", l.blocks, l.steps, l.dda_wall, l.fem_refine, l.fem_dofs,
+                      l.fem_wall, l.fem_vs_analytic);
     for (const double e : l.errors) md << fmt::format(" {:.4f} |", e);
     md << "\n";
   }
@@ -175,7 +187,8 @@ void register_study_convergence(CLI::App& study) {
   command->add_option("--out", args->out, "output directory (default runs/<scene name>/convergence)");
   command->add_option("--threads", args->threads, "OpenMP threads of the DDA")->check(CLI::PositiveNumber)->capture_default_str();
   command->add_option("--degree", args->degree, "FEM polynomial degree (1 or 2)")->check(CLI::Range(1, 2))->capture_default_str();
-  command->add_option("--fem-refine", args->fem_refine, "uniform refinements of the FEM reference mesh")->check(CLI::Range(0, 5))->capture_default_str();
+  command->add_option("--fem-refine", args->fem_refine, "uniform refinements of the FEM reference: one value, or one per level (e.g. 0,0,1,1,2)")
+      ->delimiter(',')->check(CLI::Range(0, 5))->capture_default_str();
   command->add_option("--stiffness-ratio", args->stiffness_ratio, "DDA joint stiffness kn as a multiple of E")->capture_default_str();
   command->add_flag("--no-figures", args->no_figures, "do not draw the PNG plots");
   command->callback([args] { run_convergence(*args); });

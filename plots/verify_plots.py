@@ -61,7 +61,7 @@ def draw_convergence(args, save):
     rows = read_rows(args.table)
     if not rows:
         raise SystemExit(f"ddafrac_plots: {args.table} is empty")
-    fixed = {"target", "blocks", "steps", "dda_wall", "fem_wall", "passed"}
+    fixed = {"target", "blocks", "steps", "dda_wall", "fem_refine", "fem_dofs", "fem_wall", "fem_l2_vs_analytic", "passed"}
     errors = [k for k in rows[0] if k not in fixed]
     wall = np.array([float(r["dda_wall"]) for r in rows])
     blocks = np.array([float(r["blocks"]) for r in rows])
@@ -77,10 +77,15 @@ def draw_convergence(args, save):
         if good.sum() >= 2:
             rate = np.polyfit(np.log(h), np.log(values[good]), 1)[0]
             line.set_label(f"{name} (rate {rate:.2f} in h)")
+    fem = np.array([float(r.get("fem_l2_vs_analytic", "nan")) for r in rows])
+    if np.any(fem > 0):
+        fem_wall = np.array([float(r["fem_wall"]) for r in rows])
+        axes[0].loglog(fem_wall[fem > 0], fem[fem > 0], color="black", linestyle="--", marker="s",
+                       label="FEM vs analytic field L2 (against FEM wall time)")
     for b, w in zip(blocks, wall):
         axes[0].annotate(f"{int(b)}", (w, axes[0].get_ylim()[0]), fontsize="x-small", alpha=0.6,
                          textcoords="offset points", xytext=(0, 3), ha="center")
-    axes[0].set_xlabel("DDA wall time (s)")
+    axes[0].set_xlabel("wall time (s): DDA (circles), FEM (squares)")
     axes[0].set_ylabel("relative error")
     axes[0].set_title("error against run time (labels: blocks)")
     axes[1].set_xlabel("h ~ 1/sqrt(blocks)")
