@@ -43,6 +43,7 @@ struct Level {
   int fem_refine = 0;
   long fem_dofs = 0;
   double fem_vs_analytic = std::nan("");  // field L2 of the FEM against the analytic solution, if any
+  double inner = std::nan("");            // static: DDA vs FEM field L2 over r < 0.8 R
   double dda_wall = 0.0, fem_wall = 0.0;
   bool passed = false;
   std::vector<double> errors;  // one per check, in the order of the first level's checks
@@ -107,12 +108,16 @@ void run_convergence(const ConvergenceArguments& args) {
         level.steps = j.value("steps", 0L);
         level.fem_dofs = j.value("fem_dofs", 0L);
         level.fem_vs_analytic = j.value("field_l2_fem_vs_analytic", std::nan(""));
+        level.inner = j.value("field_l2_fem_inner", std::nan(""));
       }
     }
-    if (names.empty())
+    const std::string inner_name = "field L2 (sxx, syy, txy) over r < 0.8 R, DDA vs FEM";
+    if (names.empty()) {
       for (const auto& c : report.checks) names.push_back(c.what);
+      if (!std::isnan(level.inner)) names.push_back(inner_name);
+    }
     for (const auto& n : names) {
-      double v = std::nan("");
+      double v = n == inner_name ? level.inner : std::nan("");
       for (const auto& c : report.checks)
         if (c.what == n) v = std::max(std::isnan(v) ? 0.0 : v, c.value);
       level.errors.push_back(v);
