@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/dda/run.hpp"
 #include "ddafrac/dda/synthetic.hpp"
+#include "machine_ceiling.hpp"
 
 namespace ddafrac::app {
 
@@ -25,6 +27,7 @@ struct BenchArguments {
   int warmup = 5;
   std::string solver = "pcg";
   std::string out = "runs/bench";
+  bool ceiling = true;  // measure the machine's own parallel ceiling first
 };
 
 struct BenchRow {
@@ -68,6 +71,14 @@ void run_bench(const BenchArguments& a) {
   const std::filesystem::path out = a.out;
   std::filesystem::create_directories(out);
   std::vector<BenchRow> rows;
+  nlohmann::json ceiling;
+  const int most_threads = *std::max_element(a.threads.begin(), a.threads.end());
+  if (a.ceiling && most_threads > 1) {
+    const MachineCeiling m = measure_machine_ceiling(most_threads);
+    fmt::print("machine ceiling with {} threads: compute-bound kernel {:.2f}x, memory-bound kernel {:.2f}x\n", m.threads,
+               m.compute_speedup, m.memory_speedup);
+    ceiling = {{"threads", m.threads}, {"compute_speedup", m.compute_speedup}, {"memory_speedup", m.memory_speedup}};
+  }
   fmt::print("glued disc impacting a plate, {} steps after {} warm-up steps, solver {}; µs per block-step\n", a.steps,
              a.warmup, a.solver);
   fmt::print("{:>7} {:>8} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>7} {:>8}\n", "blocks", "contacts",
@@ -84,10 +95,10 @@ void run_bench(const BenchArguments& a) {
       rows.push_back(r);
     }
   }
-  nlohmann::json j = nlohmann::json::array();
+  nlohmann::json cases = nlohmann::json::array();
   std::string csv = "blocks,contacts,threads,steps,total_us,detection_us,assembly_us,solve_us,judgement_us,fracture_us,update_us,cg_mean\n";
   for (const BenchRow& r : rows) {
-    j.push_back({{"blocks", r.blocks},
+    cases.push_back({{"blocks", r.blocks},
                  {"contacts", r.contacts},
                  {"threads", r.threads},
                  {"steps", r.steps},
@@ -104,6 +115,7 @@ void run_bench(const BenchArguments& a) {
                        r.threads, r.steps, r.us.total(), r.us.detection, r.us.assembly, r.us.solve, r.us.judgement,
                        r.us.fracture, r.us.update, r.cg_mean);
   }
+  const nlohmann::json j = {{"machine_ceiling", ceiling}, {"cases", cases}};
   common::write_whole_text(out / "bench.json", j.dump(2) + "\n");
   common::write_whole_text(out / "bench.csv", csv);
   fmt::print("wrote {}/{{bench.json, bench.csv}}\n", out.string());
@@ -121,6 +133,8 @@ void register_bench_command(CLI::App& app) {
   command->add_option("--warmup", args->warmup, "untimed steps first");
   command->add_option("--solver", args->solver, "pcg or direct")->check(CLI::IsMember({"pcg", "direct"}));
   command->add_option("--out", args->out, "directory for bench.json and bench.csv");
+  command->add_flag("!--no-ceiling", args->ceiling,
+                    "skip the machine's own speed-up ceiling (compute- and memory-bound kernels, ~3 s)");
   command->callback([args] { run_bench(*args); });
 }
 
