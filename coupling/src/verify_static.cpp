@@ -626,6 +626,12 @@ VerificationReport verify_static(const scene::Scene& scene, const VerifyOptions&
       "anchor force {:.3g} N/m ({:.1e} of the load).\n\n",
       dda.steps, dda.dt_cuts, dda.last_step_ratio, dda.max_total_displacement, dda.last_stress_change, dda.anchor_force,
       dda.anchor_force / st.load);
+  if (dda.last_step_ratio >= static_tolerance) {
+    md << fmt::format("**Warning: the DDA did not reach a static state within {} steps** (last step / total displacement {:.2e}, "
+                      "wanted below {:.0e}); the comparison below is of an unconverged state.\n\n",
+                      dda.steps, dda.last_step_ratio, static_tolerance);
+    if (!options.quiet) fmt::print("verify: warning: the DDA did not reach a static state within {} steps\n", dda.steps);
+  }
   if (has_centre) {
     md << fmt::format("### Centre stresses (MPa)\n\nArea-weighted mean over the blocks with centroid within R/10 = {:.1f} mm of the "
                       "centre, every source sampled at the same centroids.\n\n",
