@@ -12,6 +12,11 @@ namespace ddafrac::coupling {
 
 namespace {
 bool is_impact(const scene::Scene& s) { return std::holds_alternative<meshes::ImpactDisc>(s.geometry); }
+bool has_slit(const scene::Scene& s) {
+  if (std::holds_alternative<meshes::SlitDisc>(s.geometry)) return true;
+  const auto* flat = std::get_if<meshes::FlattenedDisc>(&s.geometry);
+  return flat && flat->slit;
+}
 }  // namespace
 
 std::vector<std::string> missing_tolerances(const scene::Scene& scene) {
@@ -26,7 +31,7 @@ std::vector<std::string> missing_tolerances(const scene::Scene& scene) {
     need(v.gauge_rms, "gauge_rms");
   } else {
     need(v.load, "load");
-    need(v.centre_stress, "centre_stress");
+    if (!has_slit(scene)) need(v.centre_stress, "centre_stress");  // a slit takes the centre away
     need(v.field_l2, "field_l2");
   }
   return missing;
