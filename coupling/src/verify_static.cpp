@@ -621,7 +621,8 @@ VerificationReport verify_static(const scene::Scene& scene, const VerifyOptions&
   if (st.analytic) md << "| analytic | Hondros (1959) Fourier series at every block centroid | – |\n";
   md << "\n";
   md << fmt::format(
-      "How the DDA reached a static state: static mode, {} steps (dt cuts: {}); the last step moved no vertex by more than {:.2e} "
+      "How the DDA reached a static state: static mode (velocities reset every step, so the kinetic energy is zero by "
+      "construction and the measure of equilibrium is what the last step still changed), {} steps (dt cuts: {}); the last step moved no vertex by more than {:.2e} "
       "of the largest total displacement ({:.3e} m) and changed no block stress by more than {:.2e} of the pressure. Largest "
       "anchor force {:.3g} N/m ({:.1e} of the load).\n\n",
       dda.steps, dda.dt_cuts, dda.last_step_ratio, dda.max_total_displacement, dda.last_stress_change, dda.anchor_force,
