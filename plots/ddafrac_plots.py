@@ -257,6 +257,9 @@ def main():
     import verify_plots  # noqa: E402  (beside this script)
 
     verify_plots.register(commands, save)
+    import verify_dynamic_plots  # noqa: E402  (beside this script)
+
+    verify_dynamic_plots.register(commands, save)
     args = parser.parse_args()
     args.draw(args)
 
