@@ -32,6 +32,7 @@ void register_study_stability(CLI::App& study);  // study_stability.cpp (`ddafra
 void register_fem_command(CLI::App& app);    // fem_command.cpp   (deal.II reference)
 void register_verify_command(CLI::App& app);  // verify_command.cpp (DDA vs FEM vs analytic, PASS/FAIL)
 void register_study_convergence(CLI::App& study);  // study_convergence.cpp (`ddafrac study convergence`)
+void register_study_penalty(CLI::App& study);  // study_penalty.cpp (`ddafrac study penalty`)
 #endif
 
 }  // namespace ddafrac::app

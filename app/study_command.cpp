@@ -14,7 +14,7 @@ void register_study_command(CLI::App& app) {
   register_study_stability(*study);  // study_stability.cpp
 #ifdef DDAFRAC_WITH_FEM
   register_study_convergence(*study);  // study_convergence.cpp
-  // FEM studies register here: register_study_penalty(*study);
+  register_study_penalty(*study);      // study_penalty.cpp
 #endif
 }
 
