@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <variant>
 
+#include "ddafrac/coupling/verify_dynamic.hpp"
 #include "ddafrac/coupling/verify_static.hpp"
 #include "ddafrac/scene/scene.hpp"
 
@@ -45,8 +46,7 @@ VerificationReport verify_scene(const scene::Scene& scene, const VerifyOptions& 
     throw std::invalid_argument(fmt::format("{}: cannot verify without {} (add them to its [verification] table)",
                                             scene.source.empty() ? scene.name : scene.source.string(), list));
   }
-  if (is_impact(scene))  // the dynamic comparison (verify_dynamic) is being written
-    throw std::invalid_argument(fmt::format("{}: the impact comparison is not built yet", scene.source.string()));
+  if (is_impact(scene)) return verify_dynamic(scene, options);
   if (std::holds_alternative<meshes::MshFile>(scene.geometry))
     throw std::invalid_argument(fmt::format("{}: verify needs a generated disc (plain, flattened, slit or impact), not a .msh file",
                                             scene.source.string()));
