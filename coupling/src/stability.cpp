@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "ddafrac/dda/engine.hpp"
+#include "ddafrac/dda/run.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "ddafrac/scene/parse.hpp"
 
@@ -285,7 +286,7 @@ StabilityResult run_stability_case(const StabilityCase& c, const std::filesystem
       }
     }
   } catch (const dda::NumericalTrouble& ex) {
-    r.exit_status = 3;  // dda::kRunNumericalTrouble, as `ddafrac run`
+    r.exit_status = dda::kRunNumericalTrouble;  // as `ddafrac run`
     r.message = ex.what();
   } catch (const std::exception& ex) {
     r.exit_status = 1;
@@ -305,7 +306,7 @@ StabilityResult run_stability_case(const StabilityCase& c, const std::filesystem
   }
 
   // Verdict.
-  if (r.exit_status == 3) {
+  if (r.exit_status == dda::kRunNumericalTrouble) {
     r.verdict = Verdict::FailedCleanly;
     r.verdict_text = "failed cleanly (exit 3)";
   } else if (r.exit_status != 0) {
