@@ -16,7 +16,7 @@
 #include <variant>
 
 #include "commands.hpp"
-#include "fem_environment.hpp"
+#include "fem_session.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
 #include "ddafrac/fem/dynamic_problem.hpp"
@@ -151,7 +151,7 @@ nlohmann::json run_dynamic(const FemArguments& args, const scene::Scene& s, mesh
 }
 
 void run_fem(const FemArguments& args) {
-  const auto environment = start_fem_environment();
+  const FemSession fem_session;
   const scene::Scene s = args.scene.load();
   const auto out = output_directory(args.out, s, "fem");
   if (is_root()) std::filesystem::create_directories(out);

@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "commands.hpp"
-#include "fem_environment.hpp"
+#include "fem_session.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/verify.hpp"
 #include "figures.hpp"
@@ -69,7 +69,7 @@ std::string csv_name(std::string what) {
 }
 
 void run_convergence(const ConvergenceArguments& args) {
-  const auto environment = start_fem_environment();
+  const FemSession fem_session;
   const scene::Scene base = args.scene.load();
   const auto out = output_directory(args.out, base, "convergence");
   std::filesystem::create_directories(out);

@@ -18,7 +18,7 @@
 #include <sstream>
 
 #include "commands.hpp"
-#include "fem_environment.hpp"
+#include "fem_session.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/verify.hpp"
 #include "figures.hpp"
@@ -46,7 +46,7 @@ std::string utc_now() {
 }
 
 void run_verify(const VerifyArguments& args) {
-  const auto environment = start_fem_environment();
+  const FemSession fem_session;
   const scene::Scene s = args.scene.load();
   coupling::VerifyOptions options;
   options.out_dir = output_directory(args.out, s, "verify");
