@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -268,6 +267,7 @@ struct DdaRun {
   double wall = 0.0, mesh_wall = 0.0;
   double last_step_ratio = 0.0;     // last step's largest displacement / largest total displacement
   double last_stress_change = 0.0;  // max |Δσ| over the last step / reference stress scale
+  std::vector<double> step_ratios;  // per step: largest step displacement / largest total displacement
   double max_total_displacement = 0.0;
   double anchor_rigid = 0.0;        // largest rigid-body displacement the anchors resisted, m
   double anchor_force = 0.0;        // largest anchor spring force, N/m
@@ -338,13 +338,14 @@ DdaRun run_dda(const scene::Scene& scene, const Setup& st, const VerifyOptions& 
     for (std::size_t v = 0; v < b.vx.size(); ++v) total = std::max(total, std::hypot(b.vx[v] - x0[v], b.vy[v] - y0[v]));
     out.max_total_displacement = total;
     out.last_step_ratio = report.max_displacement / std::max(total, 1e-300);
+    out.step_ratios.push_back(out.last_step_ratio);
     double change = 0.0;
     for (std::size_t i = 0; i < out.block_count; ++i) change = std::max(change, (b.stress[i] - previous[i]).cwiseAbs().maxCoeff());
     out.last_stress_change = change / scale;
     previous = b.stress;
-    if (std::getenv("DDAFRAC_VERIFY_TRACE"))
-      fmt::print("step {} dt {:.3g} cuts {} oc {} maxdisp {:.3e} total {:.3e} ratio {:.3e} dstress {:.3e}\n", report.step, report.dt, report.cuts,
-                 report.open_close, report.max_displacement, total, out.last_step_ratio, out.last_stress_change);
+    if (!o.quiet)
+      fmt::print("verify: DDA step {}: largest step displacement / total {:.2e}, largest stress change / pressure {:.2e}\n",
+                 report.step, out.last_step_ratio, out.last_stress_change);
     if (k >= 1 && out.last_step_ratio < static_tolerance) break;
   }
   out.anchor_force = eo.anchor_penalty_factor * out.kn * out.anchor_rigid;
@@ -627,6 +628,9 @@ VerificationReport verify_static(const scene::Scene& scene, const VerifyOptions&
       "anchor force {:.3g} N/m ({:.1e} of the load).\n\n",
       dda.steps, dda.dt_cuts, dda.last_step_ratio, dda.max_total_displacement, dda.last_stress_change, dda.anchor_force,
       dda.anchor_force / st.load);
+  md << "Largest step displacement / largest total displacement, step by step:";
+  for (const double r : dda.step_ratios) md << fmt::format(" {:.1e}", r);
+  md << ".\n\n";
   if (dda.last_step_ratio >= static_tolerance) {
     md << fmt::format("**Warning: the DDA did not reach a static state within {} steps** (last step / total displacement {:.2e}, "
                       "wanted below {:.0e}); the comparison below is of an unconverged state.\n\n",
