@@ -522,7 +522,7 @@ VerificationReport verify_static(const scene::Scene& scene, const VerifyOptions&
     worst.push_back({i, std::sqrt(dxx * dxx + dyy * dyy + 2 * dxy * dxy) / ref_rms});
   }
   std::sort(worst.begin(), worst.end(), [](const Worst& a, const Worst& b) { return a.error > b.error || (a.error == b.error && a.block < b.block); });
-  worst.resize(std::max<std::size_t>(1, worst.size() / 100));
+  if (!worst.empty()) worst.resize(std::max<std::size_t>(1, worst.size() / 100));
   const double h = dda.mean_block_size;
   auto reason = [&](const BlockResult& b) -> std::string {
     const double r = std::hypot(b.x, b.y);
