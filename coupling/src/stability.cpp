@@ -303,6 +303,8 @@ StabilityResult run_stability_case(const StabilityCase& c, const std::filesystem
     r.dt_min = st.dt_min;
     r.dt_max = st.dt_max;
     r.cracks = engine->crack_counts().total;
+    r.missed_contacts = st.missed_contacts;
+    r.deepest_missed = st.deepest_missed;
   }
 
   // Verdict.
@@ -318,8 +320,8 @@ StabilityResult run_stability_case(const StabilityCase& c, const std::filesystem
   } else if (!(r.energy_ratio <= kEnergyBoundFactor)) {
     r.verdict = Verdict::Unstable;
     r.verdict_text = fmt::format("unstable: energy {:.3g} x supplied at step {}, t = {:.3g} s (the engine reported no "
-                                 "error)",
-                                 r.energy_ratio, r.energy_ratio_step, r.time);
+                                 "error; {} contact(s) first detected deeper than one step's displacement, deepest {:.3g} m)",
+                                 r.energy_ratio, r.energy_ratio_step, r.time, r.missed_contacts, r.deepest_missed);
   } else if (guard || !r.end_reached) {
     r.verdict = Verdict::DidNotFinish;
     r.verdict_text = "did not finish: " + r.message;

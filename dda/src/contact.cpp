@@ -387,6 +387,7 @@ void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Co
     if (it != previous.end() && !key_less(c, *it)) p = &*it;
     const bool swapped = !p && c.vertex_vertex && (p = swapped_corner(previous, c)) != nullptr;
     if (!p) continue;
+    c.carried = true;
     c.state = p->state;
     c.normal_force = p->normal_force;
     c.shear_force = p->shear_force;

@@ -125,8 +125,21 @@ void Engine::detect() {
     saved_slide_sign_[k] = c.slide_sign;
   }
   if (nc > 0) active_.contacts = true;
+  if (step_ > 0) count_missed_contacts();
   if (step_ == 0)
     active_.cohesion = std::any_of(set_.contacts.begin(), set_.contacts.end(), [](const Contact& c) { return c.cohesive; });
+}
+
+void Engine::count_missed_contacts() {
+  long missed = 0;
+  double deepest = 0.0;
+  for (const Contact& c : set_.contacts)
+    if (!c.carried && -c.d0 > allowed_) {
+      ++missed;
+      deepest = std::max(deepest, -c.d0);
+    }
+  stats_.missed_contacts += missed;
+  stats_.deepest_missed = std::max(stats_.deepest_missed, deepest);
 }
 
 void Engine::start_cohesive(Contact& c) const {

@@ -119,6 +119,7 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
              {"max", st.cg_max}};
   j["max_penetration"] = st.max_penetration;
   j["cohesion_failures"] = st.cohesion_failures;
+  j["missed_contacts"] = {{"count", st.missed_contacts}, {"deepest_m", st.deepest_missed}};
   j["contacts"] = e.contacts().contacts.size();
   j["active_terms"] = e.active_terms().names();
   const CrackCounts& cc = e.crack_counts();

@@ -50,6 +50,7 @@ struct Contact {
   double fn_iter = 0.0;                     // normal force of the latest solve, N/m
   double d_iter = 0.0, s_iter = 0.0;        // gap and shear of the latest solve, m
   bool cohesion_lost = false;               // a cohesive contact failed in this step's iterations
+  bool carried = false;                     // detection found it in the previous step's list too
 
   bool bonded(const std::vector<Joint>& joints) const {
     return joint >= 0 && !joints[static_cast<std::size_t>(joint)].broken;
