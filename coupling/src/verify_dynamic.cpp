@@ -1,6 +1,7 @@
 #include "ddafrac/coupling/verify_dynamic.hpp"
 
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 #include <omp.h>
 
 #include <algorithm>
@@ -437,10 +438,39 @@ VerificationReport verify_dynamic(const scene::Scene& scene, const VerifyOptions
       "checked |arrival error| {:.1f}%.\n\n",
       summary.mean_rms, summary.max_rms, 100.0 * summary.mean_abs_peak, 100.0 * summary.max_abs_peak,
       100.0 * summary.max_abs_arrival);
-  md << "Files: `impact_gauges.csv` (t, model, gauge, σyy, σ1 of the three runs), `impact_gauge_errors.csv`.\n\n";
+  md << "Files: `impact_gauges.csv` (t, model, gauge, σyy, σ1 of the three runs), `impact_gauge_errors.csv`, "
+        "`comparison.json`.\n\n";
   md << "![σyy at the gauges, DDA twin vs FEM](impact_gauges_syy.png)\n\n";
   md << "![σ1 at the gauges, DDA twin vs FEM](impact_gauges_s1.png)\n\n";
   report.markdown = md.str();
+
+  // Machine-readable numbers (ddafrac study convergence reads blocks, steps and fem_dofs).
+  nlohmann::json gauges = nlohmann::json::array();
+  for (std::size_t g = 0; g < errors.size(); ++g) {
+    const auto& e = errors[g];
+    gauges.push_back({{"gauge", e.gauge}, {"rms_over_peak_syy", e.syy.rms_over_peak},
+                      {"rms_over_peak_s1", e.s1_rms_over_peak}, {"peak_error", e.peak_error},
+                      {"fem_peak_syy", e.syy.reference_peak.value}, {"dda_peak_syy", e.syy.approximation_peak.value},
+                      {"fem_arrival", e.syy.reference_arrival}, {"dda_arrival", e.syy.approximation_arrival},
+                      {"arrival_error", e.arrival_error}, {"arrival_checked", e.arrival_checked},
+                      {"fem_half_one_rms_over_peak_syy", time_errors[g].syy.rms_over_peak}});
+  }
+  const nlohmann::json j{{"kind", "impact"},
+                         {"blocks", dda.blocks},
+                         {"steps", dda.steps},
+                         {"dda_wall", dda.wall},
+                         {"fem_wall", fem.wall},
+                         {"fem_dofs", fem.dofs},
+                         {"kn_over_E", ratio},
+                         {"dt", dda.dt},
+                         {"cg_total", dda.cg_total},
+                         {"dt_cuts", dda.dt_cuts},
+                         {"mean_rms_over_peak", summary.mean_rms},
+                         {"max_rms_over_peak", summary.max_rms},
+                         {"max_abs_arrival_error", summary.max_abs_arrival},
+                         {"mean_abs_peak_error", summary.mean_abs_peak},
+                         {"gauges", gauges}};
+  common::write_whole_text(options.out_dir / "comparison.json", j.dump(2) + "\n");
   return report;
 }
 
