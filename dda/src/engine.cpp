@@ -319,30 +319,27 @@ FailureRatios failure_ratios(const JointForce& f, double length, const scene::Jo
 std::vector<JointForce> Engine::joint_forces() const {
   const auto& js = blocks_.joints;
   const auto& cs = set_.contacts;
+  const auto& pairs = set_.pairs;
   std::vector<JointForce> f(js.size());
-  // Contacts of each joint in list order (CSR built serially: fixed summation order).
-  std::vector<Index> offsets(js.size() + 1, 0), list;
-  for (const Contact& c : cs)
-    if (c.joint >= 0) ++offsets[static_cast<std::size_t>(c.joint) + 1];
-  for (std::size_t j = 0; j < js.size(); ++j) offsets[j + 1] += offsets[j];
-  list.resize(static_cast<std::size_t>(offsets.back()));
-  {
-    std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
-    for (std::size_t k = 0; k < cs.size(); ++k)
-      if (cs[k].joint >= 0) list[static_cast<std::size_t>(fill[static_cast<std::size_t>(cs[k].joint)]++)] = static_cast<Index>(k);
-  }
   const auto nj = static_cast<std::int64_t>(js.size());
+  // A joint's contacts lie in the contact range of its block pair (pairs are sorted by (a, b));
+  // they are summed in list order, so the sum is the same for any thread count.
 #pragma omp parallel for schedule(static)
   for (std::int64_t j = 0; j < nj; ++j) {
     const Joint& jt = js[j];
+    const auto pair = std::lower_bound(pairs.begin(), pairs.end(), jt, [](const ContactPair& p, const Joint& q) {
+      return p.a < q.block_a || (p.a == q.block_a && p.b < q.block_b);
+    });
+    if (pair == pairs.end() || pair->a != jt.block_a || pair->b != jt.block_b) continue;
     double tx = blocks_.vx[jt.vertex_b] - blocks_.vx[jt.vertex_a];
     double ty = blocks_.vy[jt.vertex_b] - blocks_.vy[jt.vertex_a];
     const double tl = std::hypot(tx, ty);
     tx /= tl;
     ty /= tl;
     JointForce& out = f[j];
-    for (Index m = offsets[j]; m < offsets[j + 1]; ++m) {
-      const Contact& c = cs[list[m]];
+    for (Index m = pair->first; m < pair->last; ++m) {
+      const Contact& c = cs[m];
+      if (c.joint != j) continue;
       const double ux = blocks_.vx[c.edge1] - blocks_.vx[c.edge0], uy = blocks_.vy[c.edge1] - blocks_.vy[c.edge0];
       const double proj = (ux * tx + uy * ty) / std::hypot(ux, uy);
       out.normal -= c.normal_force;  // compression positive per contact -> tension positive
