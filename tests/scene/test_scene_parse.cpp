@@ -395,6 +395,6 @@ BOOST_AUTO_TEST_CASE(verification_tolerances_are_read_and_a_missing_table_means_
 }
 
 BOOST_AUTO_TEST_CASE(negative_verification_tolerance_is_refused) {
-  expect_problem(kValid + "[verification]\ngauge_rms = -0.2\n", "verification.gauge_rms", 72,
+  expect_problem(kValid + "[verification]\ngauge_rms = -0.2\n", "verification.gauge_rms", 49,
                  "> 0 (relative error), got -0.2");
 }
