@@ -115,29 +115,27 @@ void Engine::detect() {
   build_contact_topology(set_, blocks_.block_count());
   const auto nc = static_cast<std::int64_t>(set_.contacts.size());
   saved_slide_sign_.resize(set_.contacts.size());
-#pragma omp parallel for schedule(static)
+  const bool first = step_ == 0;
+  long missed = 0, cohesive = 0;
+  double deepest = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : missed, cohesive) reduction(max : deepest)
   for (std::int64_t k = 0; k < nc; ++k) {
     Contact& c = set_.contacts[k];
     const bool bonded = c.bonded(blocks_.joints);
     if (bonded) c.state = ContactState::Locked;
-    if (step_ == 0 && !bonded && c.state != ContactState::Open) start_cohesive(c);
+    if (first && !bonded && c.state != ContactState::Open) start_cohesive(c);
+    if (c.cohesive) ++cohesive;
+    // A contact seen for the first time after step 1 already deeper than one step's allowed
+    // displacement closed unseen (Statistics::missed_contacts).
+    if (!first && !c.carried && -c.d0 > allowed_) {
+      ++missed;
+      deepest = std::max(deepest, -c.d0);
+    }
     linearise_contact(c, blocks_);
     saved_slide_sign_[k] = c.slide_sign;
   }
   if (nc > 0) active_.contacts = true;
-  if (step_ > 0) count_missed_contacts();
-  if (step_ == 0)
-    active_.cohesion = std::any_of(set_.contacts.begin(), set_.contacts.end(), [](const Contact& c) { return c.cohesive; });
-}
-
-void Engine::count_missed_contacts() {
-  long missed = 0;
-  double deepest = 0.0;
-  for (const Contact& c : set_.contacts)
-    if (!c.carried && -c.d0 > allowed_) {
-      ++missed;
-      deepest = std::max(deepest, -c.d0);
-    }
+  if (first) active_.cohesion = cohesive > 0;
   stats_.missed_contacts += missed;
   stats_.deepest_missed = std::max(stats_.deepest_missed, deepest);
 }

@@ -173,7 +173,6 @@ class Engine {
  private:
   void detect();
   void start_cohesive(Contact& c) const;
-  void count_missed_contacts();
   void block_terms(double dt);
   void assemble();
   bool judge(int& changed_first);
