@@ -50,6 +50,7 @@ struct RunArguments {
   long max_steps = 0;
   bool no_vtk = false;
   bool no_figures = false;
+  double energy_tolerance = dda::kDefaultEnergyBalanceTolerance;
 };
 
 std::string eta_text(double seconds) {
@@ -129,6 +130,13 @@ void run_run(const RunArguments& args) {
                "share only a mesh node and overlap through the compliance of the joints around it (see "
                "missed_contacts in summary.json and the stability study in the README)\n",
                st.missed_contacts, st.deepest_missed, engine->allowed_displacement());
+  const dda::EnergyLedger& ledger = engine->ledger();
+  if (ledger.largest_balance_error > args.energy_tolerance)
+    fmt::print(stderr,
+               "warning: the energy balance did not close: its error reached {:.3g} (tolerance {:.3g}; at the end "
+               "{:.3g}), so the run created or lost energy that no load, support, friction, crack or the time "
+               "scheme accounts for (the energy columns of history.csv show when)\n",
+               ledger.largest_balance_error, args.energy_tolerance, ledger.balance_error());
   fmt::print("wrote {}/{{summary.json, history.csv, cracks.csv, crack_intervals.csv{}{}{}}}\n", out.string(),
              scene.gauges.empty() ? "" : ", gauges.csv", engine->blocks().anchors.empty() ? "" : ", loading.csv",
              ro.vtk ? ", run.pvd, vtk/" : "");
@@ -164,6 +172,9 @@ void register_run_command(CLI::App& app) {
       ->check(CLI::IsMember({"pcg", "direct"}));
   command->add_option("--max-steps", args->max_steps, "stop after this many steps (0: run to the end time)");
   command->add_flag("--no-vtk", args->no_vtk, "skip the VTU snapshots");
+  command->add_option("--energy-tolerance", args->energy_tolerance,
+                      "warn at the end when the energy balance error ever exceeded this fraction (default 0.01)")
+      ->check(CLI::PositiveNumber);
   command->add_flag("--no-figures", args->no_figures, "skip the PNG figures (also skipped when scene.output.figures is false)");
   command->callback([args] { run_run(*args); });
 }

@@ -81,6 +81,7 @@ Contact make_contact(const View& w, const Candidate& cd) {
   c.edge0 = e0;
   c.edge1 = e1;
   c.vertex_vertex = cd.vv;
+  c.shared_node = cd.shared_node;
   const double dx = w.x(e1) - w.x(e0), dy = w.y(e1) - w.y(e0);
   const double l2 = dx * dx + dy * dy;
   c.d0 = cd.d;
@@ -106,6 +107,21 @@ bool inside_block(const View& w, Index q, double px, double py) {
     if ((yi > py) != (yj > py) && px < (xj - xi) * (py - yi) / (yj - yi) + xi) in = !in;
   }
   return in;
+}
+
+/// The copies (v of a, u of b) of the one mesh node shared by two blocks of one body that share
+/// no edge, or {-1, -1}.
+std::pair<Index, Index> node_only_neighbours(const BlockSystem& s, Index a, Index b) {
+  std::pair<Index, Index> found{-1, -1};
+  if (s.mesh_body[static_cast<std::size_t>(a)] != s.mesh_body[static_cast<std::size_t>(b)]) return found;
+  int shared = 0;
+  for (Index v = s.begin(a); v < s.end(a); ++v)
+    for (Index u = s.begin(b); u < s.end(b); ++u)
+      if (s.vertex_node[static_cast<std::size_t>(v)] == s.vertex_node[static_cast<std::size_t>(u)]) {
+        found = {v, u};
+        ++shared;
+      }
+  return shared == 1 ? found : std::pair<Index, Index>{-1, -1};
 }
 
 void offer(Candidate& slot, const Candidate& c) {
@@ -157,13 +173,25 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
   auto skipped = [&](Index block, Index v) {
     return skip[static_cast<std::size_t>(block == a ? v - s.begin(a) : na + v - s.begin(b))] != 0;
   };
+  // Blocks of one body that meet only at a mesh node (triangles of a fan with others between
+  // them) are paired there topologically: the compliance of the joints around the node lets the
+  // two copies of the node drift apart and overlap, by more than the search distance on soft
+  // joints, so the corner is judged as one vertex-vertex contact whatever the distance (up to
+  // the deepest penetration kept) and the angle between the wedges, never as a vertex against
+  // the far edge of the other wedge (docs/design.md, "Contacts at shared mesh nodes").
+  auto [node_v, node_u] = node_only_neighbours(s, a, b);
+  if (node_v >= 0) {
+    const double dx = w.x(node_v) - w.x(node_u), dy = w.y(node_v) - w.y(node_u);
+    if (dx * dx + dy * dy > depth * depth) node_v = node_u = -1;
+  }
+  auto node_copy = [&](Index v) { return v >= 0 && (v == node_v || v == node_u); };
   // Vertex-edge.
   for (int side = 0; side < 2; ++side) {
     const Index p = side == 0 ? a : b;  // vertex block
     const Index q = side == 0 ? b : a;  // edge block
     const double bx0 = ws.xmin[q], bx1 = ws.xmax[q], by0 = ws.ymin[q], by1 = ws.ymax[q];
     for (Index v = s.begin(p); v < s.end(p); ++v) {
-      if (skipped(p, v)) continue;
+      if (skipped(p, v) || node_copy(v)) continue;
       const double px = w.x(v), py = w.y(v);
       if (px < bx0 - depth || px > bx1 + depth || py < by0 - depth || py > by1 + depth) continue;
       for (Index e0 = s.begin(q); e0 < s.end(q); ++e0) {
@@ -190,16 +218,19 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
     if (skipped(a, v)) continue;
     for (Index u = s.begin(b); u < s.end(b); ++u) {
       if (skipped(b, u)) continue;
-      const double dx = w.x(v) - w.x(u), dy = w.y(v) - w.y(u);
-      if (dx * dx + dy * dy > vv2) continue;
-      if (wedge_gap(w, v, u) > prm.vv_max_gap_angle) continue;
+      const bool shared_node = v == node_v && u == node_u;
+      if (!shared_node) {
+        const double dx = w.x(v) - w.x(u), dy = w.y(v) - w.y(u);
+        if (dx * dx + dy * dy > vv2 || node_copy(v) || node_copy(u)) continue;
+        if (wedge_gap(w, v, u) > prm.vv_max_gap_angle) continue;
+      }
       const Index opts[4][4] = {{a, v, b, w.prev(b, u)}, {a, v, b, u}, {b, u, a, w.prev(a, v)}, {b, u, a, v}};
       Candidate chosen;
       for (const auto& o : opts) {
         const auto k = static_cast<std::size_t>(o[3]);
         if (!wedge_faces_edge(w, o[1], ws.enx[k], ws.eny[k], sin_tol)) continue;
         const double d = gap(w, o[1], o[3]);
-        if (!chosen.valid || d > chosen.d) chosen = Candidate{true, true, d, o[0], o[1], o[2], o[3]};
+        if (!chosen.valid || d > chosen.d) chosen = Candidate{true, true, d, o[0], o[1], o[2], o[3], shared_node};
       }
       if (chosen.valid) offer(slot_of(chosen.vblock, chosen.vertex), chosen);
     }
@@ -358,16 +389,17 @@ bool key_less(const Contact& p, const Contact& q) {
 }
 
 
-/// The previous contact of the same pair at the same vertex-vertex corner with the roles of
-/// vertex and edge swapped (the angle rules may pick the other reference line as the blocks
-/// move), or null.
+/// The previous contact of the same pair at the same corner with the roles of vertex and edge
+/// swapped, or null: the angle rules may pick the other reference line of a vertex-vertex
+/// contact as the blocks move, and a vertex-vertex contact whose vertices drift apart becomes a
+/// vertex-edge contact of whichever vertex entered the other block (and back).
 const Contact* swapped_corner(const std::vector<Contact>& previous, const Contact& c) {
   auto pair_less = [](const Contact& p, const Contact& q) {
     return std::make_pair(p.pair_low(), p.pair_high()) < std::make_pair(q.pair_low(), q.pair_high());
   };
   const auto [first, last] = std::equal_range(previous.begin(), previous.end(), c, pair_less);
   for (auto it = first; it != last; ++it)
-    if (it->vertex_vertex && (it->vertex == c.edge0 || it->vertex == c.edge1) &&
+    if ((it->vertex_vertex || c.vertex_vertex) && (it->vertex == c.edge0 || it->vertex == c.edge1) &&
         (c.vertex == it->edge0 || c.vertex == it->edge1))
       return &*it;
   return nullptr;
@@ -381,11 +413,14 @@ void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Co
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < n; ++k) {
     Contact& c = current[k];
-    c.state = c.d0 <= 0.0 || c.bonded(joints) ? ContactState::Locked : ContactState::Open;
+    // New contacts touching or overlapping start closed; the copies of a shared mesh node
+    // start at exactly zero gap and stay open until they overlap.
+    const bool touching = c.shared_node ? c.d0 < 0.0 : c.d0 <= 0.0;
+    c.state = touching || c.bonded(joints) ? ContactState::Locked : ContactState::Open;
     const Contact* p = nullptr;
     auto it = std::lower_bound(previous.begin(), previous.end(), c, key_less);
     if (it != previous.end() && !key_less(c, *it)) p = &*it;
-    const bool swapped = !p && c.vertex_vertex && (p = swapped_corner(previous, c)) != nullptr;
+    const bool swapped = !p && (p = swapped_corner(previous, c)) != nullptr;
     if (!p) continue;
     c.carried = true;
     c.state = p->state;
@@ -395,6 +430,9 @@ void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Co
     c.cohesive = p->cohesive;
     c.cohesive_length = p->cohesive_length;
     c.slide_sign = p->slide_sign;
+    c.stored_normal = p->stored_normal;
+    c.stored_shear = p->stored_shear;
+    c.was_bonded = p->was_bonded;
     if (swapped && p->ks > 0.0) {
       // Measured along the other block's edge the relative slip has the same sign, so the shear
       // spring keeps its elastic extension f_s/ks: the reference point sits that far behind.

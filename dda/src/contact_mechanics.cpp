@@ -113,7 +113,10 @@ namespace {
 /// Open or closed with Mohr-Coulomb friction (no cohesion): the state of an ordinary contact
 /// with gap d and shear s; fn receives its normal force (compression positive).
 ContactState judge_frictional(Contact& c, double d, double s, double tol, double& fn) {
-  if (d > (c.trial == ContactState::Open ? 0.0 : tol)) {
+  // A closed contact whose spring would pull (d > 0) opens: an ordinary contact carries no
+  // tension. The hysteresis band sits on the closing side, where it costs no energy: an open
+  // contact closes only once it overlaps by more than tol (and then stores ½·kn·tol² at most).
+  if (d > (c.trial == ContactState::Open ? -tol : 0.0)) {
     fn = 0.0;
     return ContactState::Open;
   }
@@ -144,6 +147,7 @@ bool cohesion_holds(const Contact& c, double fn, double s) {
 }  // namespace
 
 bool judge_contact(Contact& c, const Vec6& dv, const Vec6& de, bool bonded, double tol) {
+  c.friction_force = c.trial == ContactState::Sliding ? contact_coefficients(c).fs_rhs : 0.0;
   const double d = c.d0 + c.e.dot(dv) + c.g.dot(de);
   const double s = c.s0 + c.es.dot(dv) + c.gs.dot(de);
   ContactState next = ContactState::Locked;

@@ -143,7 +143,7 @@ void Engine::detect() {
 void Engine::start_cohesive(Contact& c) const {
   // Real joints closed at t = 0 are the pre-existing joints of the rock mass; contacts made
   // later (impacts, re-closing cracks) and broken virtual joints never get cohesion.
-  if (c.cohesion <= 0.0 && c.tensile_strength <= 0.0) return;
+  if (c.shared_node || (c.cohesion <= 0.0 && c.tensile_strength <= 0.0)) return;
   c.cohesive_length = cohesive_length(c, blocks_, options_.detection.angle_tolerance);
   c.cohesive = c.cohesive_length > 0.0;
 }
@@ -263,16 +263,62 @@ bool Engine::judge(int& changed_first) {
   return changed == 0;
 }
 
+StepEnergy Engine::block_step_energy(double dt) const {
+  // Terms of the linear system of the step (block_terms): ½·Δεᵀ·A·E·Δε of the elasticity,
+  // ½·p·|T·D|² of the anchors, the damping force −η·M·V1, and in static mode the kinetic energy
+  // ½·V1ᵀ·M·V1 thrown away with the velocities; the work of gravity, point loads and moving
+  // anchor targets.
+  const auto& an = scene_.analysis;
+  const double t0 = time_, t1 = time_ + dt;
+  const bool dynamic = active_.dynamic;
+  const double eta = options_.mass_damping;
+  return chunked_sum<StepEnergy>(static_cast<std::int64_t>(blocks_.block_count()), [&](std::int64_t i) {
+    StepEnergy e;
+    const Vec6& d = d_[i];
+    const PolygonIntegrals& g = blocks_.geometry[i];
+    const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
+    const Vec3 de = d.segment<3>(3);
+    e.numerical += 0.5 * g.area * de.dot(mat.elastic * de);
+    const Mat6 m = (blocks_.mass[i] / g.area) * mass_integral(g);
+    const Vec6 v1 = dynamic ? Vec6(2.0 / dt * d - blocks_.velocity[i]) : Vec6(2.0 / dt * d);
+    e.numerical += eta * v1.dot(m * d);
+    if (!dynamic) e.numerical += 0.5 * v1.dot(m * v1);
+    e.work_gravity += blocks_.mass[i] * (an.gravity[0] * d[kU] + an.gravity[1] * d[kV]);
+    for (Index l = blocks_.load_offsets[i]; l < blocks_.load_offsets[i + 1]; ++l) {
+      const PointLoad& p = blocks_.loads[static_cast<std::size_t>(l)];
+      e.work_loads += Eigen::Vector2d(p.fx, p.fy).dot(displacement_matrix(g.cx, g.cy, p.x, p.y) * d);
+    }
+    for (Index a = blocks_.anchor_offsets[i]; a < blocks_.anchor_offsets[i + 1]; ++a) {
+      const Anchor& p = blocks_.anchors[static_cast<std::size_t>(a)];
+      e.numerical += 0.5 * anchor_penalty_ * (displacement_matrix(g.cx, g.cy, p.x, p.y) * d).squaredNorm();
+      const Eigen::Vector2d r0(p.x - p.x_start - p.vx * t0, p.y - p.y_start - p.vy * t0);
+      const Eigen::Vector2d r1(p.x - p.x_start - p.vx * t1, p.y - p.y_start - p.vy * t1);
+      e.work_supports += 0.5 * anchor_penalty_ * (r1.squaredNorm() - r0.squaredNorm());
+    }
+    return e;
+  });
+}
+
 void Engine::accept(double dt) {
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
   const auto nc = static_cast<std::int64_t>(set_.contacts.size());
+  ledger_.total += block_step_energy(dt);
+  ledger_.total += chunked_sum<StepEnergy>(nc, [&](std::int64_t k) {
+    const Contact& c = set_.contacts[k];
+    return contact_step_energy(c, c.bonded(blocks_.joints));
+  });
   bool sliding = false;
   long cohesion_lost = 0;
 #pragma omp parallel for schedule(static) reduction(|| : sliding) reduction(+ : cohesion_lost)
   for (std::int64_t k = 0; k < nc; ++k) {
-    if (set_.contacts[k].cohesion_lost) ++cohesion_lost;
-    commit_contact(set_.contacts[k]);
-    if (set_.contacts[k].state == ContactState::Sliding) sliding = true;
+    Contact& c = set_.contacts[k];
+    if (c.cohesion_lost) ++cohesion_lost;
+    commit_contact(c);
+    const ContactEnergy stored = contact_energy(c);
+    c.stored_normal = stored.normal;
+    c.stored_shear = stored.shear;
+    c.was_bonded = c.bonded(blocks_.joints);
+    if (c.state == ContactState::Sliding) sliding = true;
   }
   if (sliding) active_.friction = true;
   stats_.cohesion_failures += cohesion_lost;
@@ -432,17 +478,19 @@ Energies Engine::energies() const {
     const Vec3& s = blocks_.stress[i];
     return 0.5 * blocks_.geometry[i].area * s.dot(mat.compliance * s);
   });
-  e.contact = chunked_sum(static_cast<std::int64_t>(set_.contacts.size()), [&](std::int64_t k) {
-    const Contact& c = set_.contacts[k];
-    if (c.state == ContactState::Open) return 0.0;
-    const double en = 0.5 * c.kn * c.d_iter * c.d_iter;
-    return c.state == ContactState::Locked ? en + 0.5 * c.ks * c.s_iter * c.s_iter : en;
+  e.contact = chunked_sum(static_cast<std::int64_t>(set_.contacts.size()),
+                          [&](std::int64_t k) { return contact_energy(set_.contacts[k]).total(); });
+  e.support = chunked_sum(static_cast<std::int64_t>(blocks_.anchors.size()), [&](std::int64_t a) {
+    const Anchor& p = blocks_.anchors[static_cast<std::size_t>(a)];
+    const Eigen::Vector2d r(p.x - p.x_start - p.vx * time_, p.y - p.y_start - p.vy * time_);
+    return 0.5 * anchor_penalty_ * r.squaredNorm();
   });
   return e;
 }
 
 StepReport Engine::step(double max_dt) {
   StepReport rep;
+  if (step_ == 0) ledger_.initial = energies().stored();
   {
     Timer t(stats_.times.detection);
     detect();
@@ -576,6 +624,9 @@ StepReport Engine::step(double max_dt) {
     Timer t(stats_.times.update);
     rep.energy = energies();
   }
+  ledger_.stored = rep.energy;
+  ledger_.largest_balance_error = std::max(ledger_.largest_balance_error, std::abs(ledger_.balance_error()));
+  rep.ledger = ledger_;
   return rep;
 }
 

@@ -25,15 +25,19 @@ const char* plane_name(scene::PlaneModel p) { return p == scene::PlaneModel::Str
 std::string history_header() {
   return "step,t,dt,open_close_iterations,cg_iterations,dt_cuts,kinetic_energy,strain_energy,contact_energy,"
          "kinetic_free_energy,kinetic_strain_ratio,max_penetration,contacts,closed,sliding,new_cracks,cracks_total,cracks_tensile,"
-         "cracks_shear\n";
+         "cracks_shear,support_energy,work_gravity,work_loads,work_supports,friction_dissipation,joint_break_loss,"
+         "numerical_dissipation,balance_error\n";
 }
 
 std::string history_row(const StepReport& r) {
   const double ratio = r.energy.strain > 0.0 ? r.energy.kinetic_free / r.energy.strain : 0.0;
-  return fmt::format("{},{:.17g},{:.17g},{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.9g},{:.17g},{},{},{},{},{},{},{}\n", r.step,
-                     r.time, r.dt, r.open_close, r.cg_iterations, r.cuts, r.energy.kinetic, r.energy.strain,
+  const StepEnergy& w = r.ledger.total;
+  return fmt::format("{},{:.17g},{:.17g},{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.9g},{:.17g},{},{},{},{},{},{},{},"
+                     "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.9g}\n",
+                     r.step, r.time, r.dt, r.open_close, r.cg_iterations, r.cuts, r.energy.kinetic, r.energy.strain,
                      r.energy.contact, r.energy.kinetic_free, ratio, r.max_penetration, r.contacts, r.closed, r.sliding, r.new_cracks,
-                     r.cracks.total, r.cracks.tensile, r.cracks.shear);
+                     r.cracks.total, r.cracks.tensile, r.cracks.shear, r.energy.support, w.work_gravity, w.work_loads,
+                     w.work_supports, w.friction, w.joint_breaks, w.numerical, r.ledger.balance_error());
 }
 
 std::string cracks_document(const std::vector<CrackEvent>& cracks) {
@@ -117,6 +121,24 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
              {"total", st.cg_total},
              {"mean", st.solves > 0 ? static_cast<double>(st.cg_total) / static_cast<double>(st.solves) : 0.0},
              {"max", st.cg_max}};
+  const EnergyLedger& ledger = e.ledger();
+  j["energy"] = {{"unit", "J/m"},
+                 {"initial", ledger.initial},
+                 {"stored", {{"kinetic", ledger.stored.kinetic},
+                             {"strain", ledger.stored.strain},
+                             {"contact", ledger.stored.contact},
+                             {"support", ledger.stored.support},
+                             {"total", ledger.stored.stored()}}},
+                 {"work", {{"gravity", ledger.total.work_gravity},
+                           {"loads", ledger.total.work_loads},
+                           {"supports", ledger.total.work_supports},
+                           {"total", ledger.work()}}},
+                 {"dissipated", {{"friction", ledger.total.friction},
+                                 {"joint_breaks", ledger.total.joint_breaks},
+                                 {"numerical", ledger.total.numerical},
+                                 {"total", ledger.dissipated()}}},
+                 {"balance_error", ledger.balance_error()},
+                 {"largest_balance_error", ledger.largest_balance_error}};
   j["max_penetration"] = st.max_penetration;
   j["cohesion_failures"] = st.cohesion_failures;
   j["missed_contacts"] = {{"count", st.missed_contacts}, {"deepest_m", st.deepest_missed}};

@@ -4,6 +4,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <set>
 
 #include "ddafrac/dda/contact_mechanics.hpp"
 #include "ddafrac/dda/engine.hpp"
@@ -117,19 +118,32 @@ BOOST_AUTO_TEST_CASE(contact_gradients_match_finite_differences) {
   }
 }
 
-// A glued ring disc: every interior edge gives exactly two bonded contacts, none spurious.
-BOOST_AUTO_TEST_CASE(glued_disc_contacts_are_two_per_joint) {
+// A glued ring disc: every interior edge gives exactly two bonded contacts; the only other
+// contacts are one per pair of triangles that meet at a mesh node alone, open at zero gap.
+BOOST_AUTO_TEST_CASE(glued_disc_contacts_are_two_per_joint_and_one_per_shared_node) {
   const meshes::Mesh m = make_ring_disc_mesh(0.1, 600, 0.1, 0.0);
   auto s = make_impact_scene(0.0, 1e-6);
   s.bodies.pop_back();
   Engine e(s, m);
   e.step();
   const auto& cs = e.contacts().contacts;
-  std::size_t bonded = 0;
-  for (const Contact& c : cs) bonded += c.bonded(e.blocks().joints) ? 1 : 0;
+  std::size_t bonded = 0, node_contacts = 0;
+  std::set<std::pair<Index, Index>> node_pairs;
+  for (const Contact& c : cs) {
+    if (c.bonded(e.blocks().joints)) {
+      ++bonded;
+      continue;
+    }
+    BOOST_TEST(c.shared_node);
+    BOOST_TEST((c.state == ContactState::Open));
+    BOOST_TEST(std::abs(c.d0) <= 1e-15);
+    ++node_contacts;
+    node_pairs.insert({c.pair_low(), c.pair_high()});
+  }
   BOOST_TEST(e.blocks().joints.size() > 0u);
-  BOOST_TEST(cs.size() == 2 * e.blocks().joints.size());
-  BOOST_TEST(bonded == cs.size());
+  BOOST_TEST(bonded == 2 * e.blocks().joints.size());
+  BOOST_TEST(node_contacts > e.blocks().joints.size() / 2);
+  BOOST_TEST(node_pairs.size() == node_contacts);
 }
 
 // PCG with block-Jacobi agrees with the sparse LDLT to the PCG tolerance (1e-12 relative residual

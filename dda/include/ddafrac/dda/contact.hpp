@@ -24,6 +24,11 @@ struct Contact {
   Index joint = -1;              // virtual joint (BlockSystem::joints); bonded while intact
   Index joint_set = -1;          // Scene::joint_sets index of its properties (-1: defaults)
   bool vertex_vertex = false;
+  // Vertex and reference edge are copies of one mesh node in two blocks of one body that share
+  // that node but no intact joint at it (docs/design.md, "Contacts at shared mesh nodes"): found
+  // from t = 0 whatever the wedge angles, so that the copies can never overlap unseen. Such a
+  // contact starts open at zero gap and never gets the cohesion of a real joint closed at t = 0.
+  bool shared_node = false;
   // Carried from step to step.
   ContactState state = ContactState::Open;
   double ref_t = 0.0;         // locked reference point on the edge, as edge parameter 0..1
@@ -35,6 +40,10 @@ struct Contact {
   // up to c·l_c + fn·tanφ; once either is exceeded it keeps friction only, for good.
   bool cohesive = false;
   double cohesive_length = 0.0;  // l_c, m: this contact's share of the joint face
+  // Energy ledger: what the springs stored at the end of the previous step (J/m) and whether the
+  // contact was an intact virtual joint then (energy_ledger.hpp).
+  double stored_normal = 0.0, stored_shear = 0.0;
+  bool was_bonded = false;
   // Properties.
   double kn = 0.0, ks = 0.0;  // penalty springs, N/m
   double tan_phi = 0.0;
@@ -48,6 +57,7 @@ struct Contact {
   // Per open-close iteration.
   ContactState trial = ContactState::Open;  // state assumed by the current assembly
   double fn_iter = 0.0;                     // normal force of the latest solve, N/m
+  double friction_force = 0.0;              // N/m, friction load of the latest assembly (sliding)
   double d_iter = 0.0, s_iter = 0.0;        // gap and shear of the latest solve, m
   bool cohesion_lost = false;               // a cohesive contact failed in this step's iterations
   bool carried = false;                     // detection found it in the previous step's list too
@@ -90,6 +100,7 @@ struct ContactCandidate {
   bool vv = false;
   double d = 0.0;
   Index vblock = 0, vertex = 0, eblock = 0, e0 = 0;
+  bool shared_node = false;  // vv between the copies of one mesh node in one body (Contact::shared_node)
 };
 
 /// Reusable scratch space of the broad phase (avoids reallocation every step).

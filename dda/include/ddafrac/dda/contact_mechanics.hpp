@@ -47,8 +47,10 @@ ContactCoefficients contact_coefficients(const Contact& c);
 /// Shear is an elastic-plastic spring measured from the reference point (return mapping): a
 /// closed contact slides while ks·|s| exceeds tanφ·fn, in the direction of s; a sliding contact
 /// keeps its elastic part at the limit and its reference point follows the plastic slip.
+/// A closed ordinary contact opens as soon as its spring would pull (gap > 0): only bonded and
+/// cohesive contacts carry tension.
 /// `tolerance` (m) is a hysteresis band that keeps contacts sitting exactly at a threshold from
-/// flipping forever: a closed contact opens only beyond +tolerance, a locked one slides only if
+/// flipping forever: an open contact closes only once it overlaps by more than `tolerance`, a locked one slides only if
 /// its shear exceeds the friction limit by ks·tolerance, a sliding one locks only when its
 /// shear in the sliding direction falls below the limit by ks·tolerance.
 bool judge_contact(Contact& c, const Vec6& d_vertex_block, const Vec6& d_edge_block, bool bonded,

@@ -9,6 +9,7 @@
 
 #include "ddafrac/dda/block_system.hpp"
 #include "ddafrac/dda/contact.hpp"
+#include "ddafrac/dda/energy_ledger.hpp"
 #include "ddafrac/dda/linear_system.hpp"
 #include "ddafrac/meshes/mesh.hpp"
 #include "ddafrac/scene/scene.hpp"
@@ -70,13 +71,6 @@ struct FailureRatios {
 };
 FailureRatios failure_ratios(const JointForce& f, double length, const scene::JointSet& strength);
 
-struct Energies {
-  double kinetic = 0.0;       // J per unit thickness
-  double kinetic_free = 0.0;  // of the blocks without fixed/prescribed points (platens excluded)
-  double strain = 0.0;   // elastic energy of the blocks
-  double contact = 0.0;  // energy stored in contact springs
-};
-
 struct StepReport {
   long step = 0;            // number of this accepted step (1-based)
   double time = 0.0;        // s, at the end of the step
@@ -90,6 +84,7 @@ struct StepReport {
   double max_penetration = 0.0;   // m, deepest closed contact after the step
   std::size_t contacts = 0, closed = 0, sliding = 0;
   Energies energy;
+  EnergyLedger ledger;  // cumulative, after this step
 };
 
 struct Statistics {
@@ -150,6 +145,8 @@ class Engine {
   const ActiveTerms& active_terms() const { return active_; }
   const EngineOptions& options() const { return options_; }
   Energies energies() const;
+  /// Energy ledger so far (stored energies as of the last accepted step).
+  const EnergyLedger& ledger() const { return ledger_; }
   /// Block displacement of the last accepted step (D per block).
   const BlockVector& last_displacement() const { return d_; }
 
@@ -177,6 +174,7 @@ class Engine {
   void assemble();
   bool judge(int& changed_first);
   void reset_trials();
+  StepEnergy block_step_energy(double dt) const;
   void accept(double dt);
   std::size_t fracture_check();
   [[noreturn]] void trouble(const std::string& what) const;
@@ -201,6 +199,7 @@ class Engine {
   double allowed_ = 0.0;
   double anchor_penalty_ = 0.0;
   long step_ = 0;
+  EnergyLedger ledger_;
   std::vector<CrackEvent> cracks_;
   CrackCounts crack_counts_;
   std::vector<Index> gauge_blocks_;

@@ -1,0 +1,80 @@
+#pragma once
+// The energy ledger of a run (docs/design.md, "Energy ledger"): what the blocks store, what the
+// loads and supports put in, and where the rest went, so that a run shows whether it created
+// energy.
+//
+// Every accepted step solves one linear system: the inertia of Newmark (γ = 1, β = ½) against
+// springs (block elasticity, contacts, anchors) and loads that are linear in the step
+// displacement D. For that system the step's energy change is exact:
+//
+//   ΔK + ΔΠ = W_loads − ½·Dᵀ·K_springs·D,
+//
+// with ΔΠ the change of the springs' quadratic potentials along the linearised step. The last
+// term is the scheme's numerical dissipation (always ≥ 0: the force of every spring is taken at
+// the end of the step). What the linearised step does not see shows up as the balance error:
+// gaps and areas recomputed on the moved geometry, contacts that appear already overlapping,
+// contacts that vanish from the list while loaded.
+
+#include <vector>
+
+#include "ddafrac/dda/block_system.hpp"
+#include "ddafrac/dda/contact.hpp"
+#include "ddafrac/dda/types.hpp"
+
+namespace ddafrac::dda {
+
+/// Energies stored at one instant, J per unit thickness (J/m).
+struct Energies {
+  double kinetic = 0.0;       // ½·Vᵀ·M·V of every block
+  double kinetic_free = 0.0;  // of the blocks without fixed/prescribed points (platens excluded)
+  double strain = 0.0;        // ½·A·σᵀ·C·σ of every block
+  double contact = 0.0;       // contact springs (ContactEnergy)
+  double support = 0.0;       // anchor springs of fixed and prescribed points, ½·p·|x − target|²
+  double stored() const { return kinetic + strain + contact + support; }
+};
+
+/// Energy a contact's springs store at the end of an accepted step, J/m. Closed contacts:
+/// ½·kn·d²; locked ones add ½·ks·s², sliding ones the elastic part of their shear spring at the
+/// friction limit, ½·(tanφ·fn)²/ks.
+struct ContactEnergy {
+  double normal = 0.0, shear = 0.0;
+  double total() const { return normal + shear; }
+};
+ContactEnergy contact_energy(const Contact& c);
+
+/// Where the energy of one accepted step went, J/m (all cumulative in EnergyLedger).
+struct StepEnergy {
+  double work_gravity = 0.0;   // body force on the step displacement of the centroids
+  double work_loads = 0.0;     // point loads
+  double work_supports = 0.0;  // anchor targets moving (prescribed bodies); 0 for fixed ones
+  double friction = 0.0;       // dissipated by sliding contacts
+  double joint_breaks = 0.0;   // spring energy of broken virtual joints released as they open
+  double numerical = 0.0;      // the time scheme's dissipation (see the file comment)
+  StepEnergy& operator+=(const StepEnergy& o);
+};
+
+/// Cumulative ledger: initial + work = stored + dissipated, up to the balance error.
+struct EnergyLedger {
+  double initial = 0.0;  // stored at t = 0
+  Energies stored;       // now
+  StepEnergy total;      // cumulative since t = 0
+  double work() const { return total.work_gravity + total.work_loads + total.work_supports; }
+  double dissipated() const { return total.friction + total.joint_breaks + total.numerical; }
+  /// ((stored + dissipated) − (initial + work)) / (initial + work): positive = energy created.
+  /// With nothing to compare against (initial + work ≤ 0) it is relative to the largest of the
+  /// stored and dissipated energies.
+  double balance_error() const;
+  double largest_balance_error = 0.0;  // largest |balance_error()| after any step so far
+};
+
+/// |balance error| above which a run warns at its end (1%).
+constexpr double kDefaultEnergyBalanceTolerance = 0.01;
+
+/// What the step's linearised contact springs, friction and releases did, from the state of
+/// every contact after the converged open-close iteration (trial state, gaps and forces at the
+/// step's start and end, energy stored at the end of the previous step). A contact that opens
+/// gives up what it stored: to joint_breaks if it was an intact virtual joint at the previous
+/// step and is broken now, else to numerical.
+StepEnergy contact_step_energy(const Contact& c, bool bonded_now);
+
+}  // namespace ddafrac::dda
