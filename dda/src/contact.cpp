@@ -17,6 +17,10 @@ const char* to_string(ContactState s) {
 
 namespace {
 
+bool key_less(const Contact& p, const Contact& q) {
+  return std::make_tuple(p.pair_low(), p.pair_high(), p.vertex) < std::make_tuple(q.pair_low(), q.pair_high(), q.vertex);
+}
+
 constexpr double kTwoPi = 6.283185307179586;
 /// Upper bound on broad-phase grid cells per block (keeps the grid O(N) in memory).
 constexpr double kMaxCellsPerBlock = 4.0;
@@ -29,6 +33,7 @@ constexpr double kPenetrationEdgeFraction = 0.3;
 struct View {
   const BlockSystem& s;
   const DetectionWorkspace& w;
+  const std::vector<Contact>& previous;  // the previous step's contacts, sorted by key_less
   double x(Index v) const { return s.vx[static_cast<std::size_t>(v)]; }
   double y(Index v) const { return s.vy[static_cast<std::size_t>(v)]; }
   Index prev(Index block, Index v) const { return v == s.begin(block) ? s.end(block) - 1 : v - 1; }
@@ -128,6 +133,18 @@ void offer(Candidate& slot, const Candidate& c) {
   if (!slot.valid || std::abs(c.d) < std::abs(slot.d)) slot = c;
 }
 
+/// Did the previous step hold vertex v of vblock closed against the edge of eblock that starts
+/// at e0, as a vertex-vertex contact?
+bool was_closed_against(const View& w, Index vblock, Index v, Index eblock, Index e0) {
+  Contact key;
+  key.vblock = vblock;
+  key.eblock = eblock;
+  key.vertex = v;
+  const auto it = std::lower_bound(w.previous.begin(), w.previous.end(), key, key_less);
+  return it != w.previous.end() && !key_less(key, *it) && it->vertex_vertex && it->eblock == eblock &&
+         it->edge0 == e0 && it->state != ContactState::Open;
+}
+
 /// Narrow phase of one block pair a < b; appends at most one contact per vertex.
 void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
                   std::vector<Candidate>& best, std::vector<char>& skip, std::vector<Candidate>& out) {
@@ -224,14 +241,19 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
         if (dx * dx + dy * dy > vv2 || node_copy(v) || node_copy(u)) continue;
         if (wedge_gap(w, v, u) > prm.vv_max_gap_angle) continue;
       }
+      // A closed corner keeps the reference line it had while the angle rules allow it: switching
+      // to another line of the same corner while overlapping would make the gap, and the energy
+      // of its spring, jump.
       const Index opts[4][4] = {{a, v, b, w.prev(b, u)}, {a, v, b, u}, {b, u, a, w.prev(a, v)}, {b, u, a, v}};
-      Candidate chosen;
+      Candidate chosen, kept;
       for (const auto& o : opts) {
         const auto k = static_cast<std::size_t>(o[3]);
         if (!wedge_faces_edge(w, o[1], ws.enx[k], ws.eny[k], sin_tol)) continue;
-        const double d = gap(w, o[1], o[3]);
-        if (!chosen.valid || d > chosen.d) chosen = Candidate{true, true, d, o[0], o[1], o[2], o[3], shared_node};
+        const Candidate option{true, true, gap(w, o[1], o[3]), o[0], o[1], o[2], o[3], shared_node};
+        if (!chosen.valid || option.d > chosen.d) chosen = option;
+        if (was_closed_against(w, o[0], o[1], o[2], o[3])) kept = option;
       }
+      if (kept.valid) chosen = kept;
       if (chosen.valid) offer(slot_of(chosen.vblock, chosen.vertex), chosen);
     }
   }
@@ -273,7 +295,7 @@ void vertex_data(const BlockSystem& s, DetectionWorkspace& w) {
 }  // namespace
 
 std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams& prm,
-                                     DetectionWorkspace& work) {
+                                     DetectionWorkspace& work, const std::vector<Contact>& previous) {
   const std::size_t n = s.block_count();
   const auto ni = static_cast<std::int64_t>(n);
   std::vector<Contact> result;
@@ -339,7 +361,7 @@ std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams
   work.candidates.resize(n);
   work.found.resize(n);
   vertex_data(s, work);
-  const View w{s, work};
+  const View w{s, work, previous};
 #pragma omp parallel
   {
     std::vector<Candidate> best;
@@ -384,9 +406,6 @@ std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams
 }
 
 namespace {
-bool key_less(const Contact& p, const Contact& q) {
-  return std::make_tuple(p.pair_low(), p.pair_high(), p.vertex) < std::make_tuple(q.pair_low(), q.pair_high(), q.vertex);
-}
 
 
 /// The previous contact of the same pair at the same corner with the roles of vertex and edge

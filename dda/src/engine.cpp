@@ -108,7 +108,7 @@ void Engine::trouble(const std::string& what) const {
 }
 
 void Engine::detect() {
-  std::vector<Contact> found = detect_contacts(blocks_, options_.detection, detection_);
+  std::vector<Contact> found = detect_contacts(blocks_, options_.detection, detection_, set_.contacts);
   transfer_contact_state(set_.contacts, found, blocks_.joints, blocks_);
   assign_contact_properties(found, blocks_, scene_);
   set_.contacts = std::move(found);

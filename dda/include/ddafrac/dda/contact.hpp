@@ -115,10 +115,12 @@ struct DetectionWorkspace {
   std::vector<std::vector<ContactCandidate>> found;  // per block: contacts of its pairs
 };
 
-/// Finds all contacts (identity and geometry only; state is transferred afterwards).
-/// Deterministic: the output is sorted by (low block, high block, vertex) whatever the threads.
+/// Finds all contacts (identity and geometry only; state is transferred afterwards). The
+/// previous step's contacts (sorted, as returned) only decide which reference line a closed
+/// vertex-vertex corner keeps. Deterministic: the output is sorted by (low block, high block,
+/// vertex) whatever the threads.
 std::vector<Contact> detect_contacts(const BlockSystem& blocks, const DetectionParams& params,
-                                     DetectionWorkspace& work);
+                                     DetectionWorkspace& work, const std::vector<Contact>& previous);
 
 /// Carries state (state, reference point, forces, slip, cohesion) from the previous list to contacts of
 /// the same vertex and block pair, or of the same vertex-vertex corner with vertex and edge
