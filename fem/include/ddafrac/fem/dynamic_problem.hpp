@@ -74,11 +74,22 @@ struct SnapshotRecord {
   std::string file;  // relative to the snapshot directory
 };
 
+/// Wall time of the time loop by phase, summed over all steps (s): where a step's time goes.
+struct StepTimes {
+  double rhs = 0.0;     // Newmark right-hand side: vector updates and the product with M
+  double solve = 0.0;   // the linear solve of the effective system
+  double update = 0.0;  // acceleration, velocity and displacement from the solution
+  double gauges = 0.0;  // stress at the gauge points
+  double energy = 0.0;  // kinetic and strain energy
+  double output = 0.0;  // VTU snapshots
+};
+
 struct DynamicResult {
   std::vector<GaugeRecord> gauges;
   std::vector<SnapshotRecord> snapshots;
   std::vector<EnergyRecord> energy;
   RunStats stats;
+  StepTimes times;
   int steps = 0;
 };
 
