@@ -64,7 +64,7 @@ std::string sample_row(const std::string& label, double t, const fem::StressSamp
 constexpr const char* gauge_header = "t,gauge,sxx,syy,txy,s1,s3\n";
 
 nlohmann::json stats_json(const fem::RunStats& s) {
-  return {{"cells", s.cells}, {"n_dofs", s.dofs}, {"iterations", s.iterations},
+  return {{"cells", s.cells}, {"n_dofs", s.dofs}, {"solver", s.solver}, {"iterations", s.iterations},
           {"setup_seconds", s.setup_seconds}, {"solve_seconds", s.solve_seconds}};
 }
 

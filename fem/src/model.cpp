@@ -541,13 +541,15 @@ dealii::Vector<double> to_serial(const Vec& v) {
 }
 
 void sum_over_ranks(dealii::Vector<double>& v) {
-  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1) return;
+  if (single_rank()) return;
   const dealii::Vector<double> local(v);
   dealii::Utilities::MPI::sum(dealii::make_array_view(local), MPI_COMM_WORLD,
                               dealii::make_array_view(v));
 }
 
 bool is_root() { return dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0; }
+
+bool single_rank() { return dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1; }
 
 ElasticSolver::ElasticSolver(const Matrix& matrix, const Model& model,
                              const SolverSettings& settings)

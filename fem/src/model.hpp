@@ -138,6 +138,7 @@ class Model {
 /// CG + ML AMG (rigid-body modes as the near null space) on one matrix, set up once.
 class ElasticSolver {
  public:
+  static constexpr const char* name = "CG + ML AMG";
   ElasticSolver(const Matrix& matrix, const Model& model, const SolverSettings& settings);
   ~ElasticSolver();
   /// Solves and returns the iteration count; throws FemError if CG did not converge.
@@ -157,5 +158,7 @@ dealii::Vector<double> to_serial(const Vec& v);
 void sum_over_ranks(dealii::Vector<double>& v);
 /// True on the rank that writes files.
 bool is_root();
+/// True if this process is the only rank (it holds every row of every matrix).
+bool single_rank();
 
 }  // namespace ddafrac::fem::detail

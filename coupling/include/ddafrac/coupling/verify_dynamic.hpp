@@ -63,6 +63,7 @@ struct GaugeHistories {
   // FEM only.
   std::size_t dofs = 0;
   long fem_iterations = 0;
+  std::string fem_solver;  // the linear solver, with its CG iterations if iterative
 };
 
 /// The DDA twin (see the top of this file).

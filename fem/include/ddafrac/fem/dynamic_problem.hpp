@@ -2,7 +2,8 @@
 // Contact-free elastodynamics of a disc: the disc moves at v0 towards the plate and the impact
 // patch is held (u = 0) from t = 0, launching the impact waves; or, as an option, the disc loaded
 // by a prescribed pressure pulse on the patch. Newmark time stepping with a
-// selectable (beta, gamma); consistent mass; the effective matrix and AMG are built once.
+// selectable (beta, gamma); consistent mass; the effective matrix is built once, and factorised
+// once (one MPI rank) or its AMG preconditioner set up once (several ranks).
 
 #include <filesystem>
 #include <optional>
