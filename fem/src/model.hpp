@@ -90,8 +90,19 @@ class Model {
 
   Vec make_vector() const { return Vec(owned_, MPI_COMM_WORLD); }
 
-  /// Stress of the displacement field u (full vector) at a point; nullopt if the point is
-  /// outside the body. Local: every rank holds every cell and the whole of u.
+  /// A point located once in the mesh: the DoFs of its cell and the gradient (1/m) of each
+  /// one's shape function there, so that reading the stress at the point again is a short sum.
+  struct Probe {
+    std::vector<dealii::types::global_dof_index> dofs;
+    std::vector<unsigned int> components;
+    std::vector<dealii::Tensor<1, dim>> gradients;
+  };
+  /// The probe of a point; nullopt if the point is outside the body.
+  std::optional<Probe> probe(const Point& p) const;
+  /// Stress of the displacement field u (full vector) at a probe. Local: every rank holds every
+  /// cell and the whole of u.
+  Stress2 stress_at(const dealii::Vector<double>& u, const Probe& probe) const;
+  /// The same at a point (located again at every call); nullopt if it is outside the body.
   std::optional<Stress2> stress_at(const dealii::Vector<double>& u, const Point& p) const;
   /// All cells, written whole by rank 0 (u and the optional velocity full, the same on every
   /// rank).
