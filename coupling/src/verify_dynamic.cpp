@@ -248,9 +248,7 @@ GaugeHistories run_impact_fem(const scene::Scene& scene, const ImpactSettings& s
   const fem::DynamicResult r = fem::run_dynamic(p);
   for (const auto& g : r.gauges) push_sample(out, g.gauge, g.t, g.sample.stress.yy, g.sample.s1);
   out.dofs = r.stats.dofs;
-  out.fem_iterations = r.stats.iterations;
-  out.fem_solver = r.stats.iterations > 0 ? fmt::format("{}, {} CG iterations", r.stats.solver, r.stats.iterations)
-                                          : r.stats.solver;
+  out.fem_solver = r.stats.solver;
   out.steps = r.steps;
   out.dt = p.dt;
   out.wall = seconds_since(start);

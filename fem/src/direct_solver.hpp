@@ -1,10 +1,13 @@
 #pragma once
 // Internal: a sparse Cholesky factorisation (L D L^T, CHOLMOD of SuiteSparse) of one symmetric
 // positive definite matrix, computed once; each solve is then two triangular solves and costs
-// the same at every step, whatever the right-hand side. The matrix must be whole on this
-// process: one MPI rank only (with more, the caller keeps the distributed CG + AMG).
+// the same at every step, whatever the right-hand side. Like the mesh, the factor is whole on
+// every MPI rank (each rank gathers the matrix and factorises it): a solve gathers b, every
+// rank solves the same system, and each keeps its own entries of x, so that any number of
+// ranks gives the serial answer to round-off.
 
 #include <memory>
+#include <vector>
 
 #include "model.hpp"
 
@@ -13,7 +16,8 @@ namespace ddafrac::fem::detail {
 class DirectSolver {
  public:
   static constexpr const char* name = "sparse Cholesky (CHOLMOD), factorised once";
-  /// Orders (METIS nested dissection, which fills least here), analyses and factorises.
+  /// Gathers the matrix, orders it (METIS nested dissection, which fills least here), analyses
+  /// and factorises.
   explicit DirectSolver(const Matrix& matrix);
   ~DirectSolver();
   DirectSolver(const DirectSolver&) = delete;
@@ -25,6 +29,7 @@ class DirectSolver {
  private:
   struct Factor;  // CHOLMOD's state, kept out of this header
   std::unique_ptr<Factor> factor_;
+  std::vector<dealii::types::global_dof_index> owned_;  // global index of each local entry
 };
 
 }  // namespace ddafrac::fem::detail

@@ -68,8 +68,8 @@ const DynamicProblem& checked(const DynamicProblem& problem) {
 /// initial state, then K, M and the effective matrix K + c_u M with its solver (built once: the
 /// matrix does not change at a fixed dt), then per step the right-hand side, the solve and the
 /// update of a, v and u, with gauges, energies and snapshots recorded at their intervals.
-/// On one rank the effective matrix is factorised (sparse Cholesky) and a step costs two
-/// triangular solves; on several, CG + AMG (set up once) corrects the Newmark predictor.
+/// The effective matrix is factorised (sparse Cholesky) so that a step costs one product with
+/// M and two triangular solves.
 class NewmarkRun {
  public:
   explicit NewmarkRun(const DynamicProblem& problem);
@@ -91,9 +91,8 @@ class NewmarkRun {
   // a_new = c_u (u_new - u) - c_v v - c_a a, the Newmark relations solved for a_new.
   const double c_u_, c_v_, c_a_;
   detail::Constraints constraints_;
-  detail::Matrix stiffness_, mass_, effective_;
-  std::unique_ptr<detail::DirectSolver> direct_;     // one rank
-  std::unique_ptr<detail::ElasticSolver> iterative_;  // several ranks
+  detail::Matrix stiffness_, mass_;
+  std::unique_ptr<detail::DirectSolver> solver_;
   detail::Vec patch_load_;  // N/m per Pa: nodal load of a unit pressure on the patch
   std::vector<detail::Model::Probe> gauges_;  // one per problem gauge, located once
   detail::Vec u_, v_, a_;   // state carried between steps: m, m/s, m/s^2
@@ -166,20 +165,16 @@ void NewmarkRun::setup_system() {
 }
 
 /// K and the consistent M with the constraints condensed, and the effective matrix of the
-/// step, K + c_u M, with its factorisation or preconditioner.
+/// step, K + c_u M, factorised.
 void NewmarkRun::assemble_system() {
   model_.make_sparse_matrix(stiffness_, constraints_);
   model_.make_sparse_matrix(mass_, constraints_);
   model_.assemble(constraints_, stiffness_, &mass_);
-  effective_.copy_from(stiffness_);
-  effective_.add(c_u_, mass_);
-  if (detail::single_rank()) {
-    direct_ = std::make_unique<detail::DirectSolver>(effective_);
-    result_.stats.solver = detail::DirectSolver::name;
-  } else {
-    iterative_ = std::make_unique<detail::ElasticSolver>(effective_, model_, problem_.solver);
-    result_.stats.solver = detail::ElasticSolver::name;
-  }
+  detail::Matrix effective;
+  effective.copy_from(stiffness_);
+  effective.add(c_u_, mass_);
+  solver_ = std::make_unique<detail::DirectSolver>(effective);
+  result_.stats.solver = detail::DirectSolver::name;
 }
 
 /// (K + c_u M) u_new = M (c_u u + c_v v + c_a a) + f(t).
@@ -195,16 +190,7 @@ void NewmarkRun::assemble_rhs(double t) {
 
 void NewmarkRun::solve() {
   const PhaseTimer timing(result_.times.solve);
-  if (direct_) return direct_->solve(u_new_, rhs_);
-  // CG solves for the correction to the predictor u + dt v + dt^2/2 a, so that its relative
-  // tolerance applies to what the step changes, not to the rigid motion that dominates |rhs|.
-  u_new_ = u_;
-  u_new_.add(dt_, v_, 0.5 * dt_ * dt_, a_);
-  effective_.vmult(scratch_, u_new_);
-  rhs_.add(-1.0, scratch_);
-  w_ = 0.0;
-  result_.stats.iterations += iterative_->solve(w_, rhs_);
-  u_new_ += w_;
+  solver_->solve(u_new_, rhs_);
 }
 
 /// a_new = c_u (u_new - u) - c_v v - c_a a;  v += dt ((1 - gamma) a + gamma a_new).

@@ -2,8 +2,8 @@
 // Contact-free elastodynamics of a disc: the disc moves at v0 towards the plate and the impact
 // patch is held (u = 0) from t = 0, launching the impact waves; or, as an option, the disc loaded
 // by a prescribed pressure pulse on the patch. Newmark time stepping with a
-// selectable (beta, gamma); consistent mass; the effective matrix is built once, and factorised
-// once (one MPI rank) or its AMG preconditioner set up once (several ranks).
+// selectable (beta, gamma); consistent mass; the effective matrix is built and factorised once
+// (sparse Cholesky, whole on every MPI rank like the mesh).
 
 #include <filesystem>
 #include <optional>
@@ -40,7 +40,6 @@ struct DynamicProblem {
   meshes::Mesh mesh;
   Material material;
   Discretisation discretisation;
-  SolverSettings solver;
   Newmark newmark;
   double v0 = 3.5;                           // m/s, initial speed of the disc towards -y
   std::string held_group = "impact_patch";   // boundary group held from t = 0 (or pulsed)
