@@ -42,7 +42,7 @@ struct Columns {
 
   template <class Archive>
   void serialize(Archive& archive, unsigned int /*version*/) {
-    archive& index& counts& rows& values;
+    archive & index & counts & rows & values;
   }
 };
 
