@@ -64,8 +64,16 @@ std::string sample_row(const std::string& label, double t, const fem::StressSamp
 constexpr const char* gauge_header = "t,gauge,sxx,syy,txy,s1,s3\n";
 
 nlohmann::json stats_json(const fem::RunStats& s) {
-  return {{"cells", s.cells}, {"n_dofs", s.dofs}, {"iterations", s.iterations},
+  return {{"cells", s.cells}, {"n_dofs", s.dofs}, {"solver", s.solver}, {"iterations", s.iterations},
           {"setup_seconds", s.setup_seconds}, {"solve_seconds", s.solve_seconds}};
+}
+
+/// Where a dynamic step's time goes: ms per step by phase.
+nlohmann::json step_times_json(const fem::DynamicResult& r) {
+  const auto ms = [&](double seconds) { return 1e3 * seconds / std::max(r.steps, 1); };
+  const auto& t = r.times;
+  return {{"rhs", ms(t.rhs)}, {"solve", ms(t.solve)}, {"update", ms(t.update)}, {"gauges", ms(t.gauges)},
+          {"energy", ms(t.energy)}, {"output", ms(t.output)}, {"total", ms(r.stats.solve_seconds)}};
 }
 
 nlohmann::json run_static(const FemArguments& args, const scene::Scene& s, meshes::Mesh mesh,
@@ -147,7 +155,7 @@ nlohmann::json run_dynamic(const FemArguments& args, const scene::Scene& s, mesh
   write_output(out / "energy.csv", energy);
   return {{"kind", "dynamic"}, {"loading", loading}, {"v0", problem.v0}, {"dt", problem.dt}, {"end_time", problem.end_time},
           {"steps", result.steps}, {"snapshots", result.snapshots.size()}, {"newmark", {{"beta", problem.newmark.beta}, {"gamma", problem.newmark.gamma}}},
-          {"stats", stats_json(result.stats)}};
+          {"stats", stats_json(result.stats)}, {"step_ms", step_times_json(result)}};
 }
 
 void run_fem(const FemArguments& args) {

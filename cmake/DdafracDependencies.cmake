@@ -22,4 +22,11 @@ if(DDAFRAC_WITH_FEM)
   if(NOT DEAL_II_WITH_TRILINOS)
     message(FATAL_ERROR "deal.II was built without Trilinos; the FEM reference needs it")
   endif()
+  # SuiteSparse (a dependency of Debian's deal.II) ships no CMake config in Debian 12.
+  find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
+  find_library(CHOLMOD_LIBRARY NAMES cholmod REQUIRED)
+  add_library(SuiteSparse::cholmod UNKNOWN IMPORTED)
+  set_target_properties(SuiteSparse::cholmod PROPERTIES
+    IMPORTED_LOCATION "${CHOLMOD_LIBRARY}"
+    INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}")
 endif()

@@ -248,7 +248,7 @@ GaugeHistories run_impact_fem(const scene::Scene& scene, const ImpactSettings& s
   const fem::DynamicResult r = fem::run_dynamic(p);
   for (const auto& g : r.gauges) push_sample(out, g.gauge, g.t, g.sample.stress.yy, g.sample.s1);
   out.dofs = r.stats.dofs;
-  out.fem_iterations = r.stats.iterations;
+  out.fem_solver = r.stats.solver;
   out.steps = r.steps;
   out.dt = p.dt;
   out.wall = seconds_since(start);
@@ -404,8 +404,8 @@ VerificationReport verify_dynamic(const scene::Scene& scene, const VerifyOptions
       dda.dt_cuts, settings.threads, dda.wall, dda.mesh_wall);
   md << fmt::format(
       "| FEM reference | P{} triangles, {} refinement(s), element size D/{:.0f}, {} dofs, Newmark (¼, ½), dt = {:.3g} "
-      "s, {} steps, {} CG iterations | {:.2f} |\n",
-      settings.fem_degree, settings.fem_refine, kElementsPerDiameter, fem.dofs, fem.dt, fem.steps, fem.fem_iterations,
+      "s, {} steps, {} | {:.2f} |\n",
+      settings.fem_degree, settings.fem_refine, kElementsPerDiameter, fem.dofs, fem.dt, fem.steps, fem.fem_solver,
       fem.wall);
   md << fmt::format("| FEM, DDA's scheme | as the reference but Newmark (½, 1) at dt = {:.3g} s | {:.2f} |\n\n",
                     fem_dda_scheme.dt, fem_dda_scheme.wall);

@@ -2,12 +2,15 @@
 
 #include <deal.II/base/timer.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 #include "ddafrac/common/whole_file.hpp"
 
+#include "direct_solver.hpp"
 #include "model.hpp"
 
 namespace ddafrac::fem {
@@ -17,6 +20,20 @@ namespace {
 // Output times are matched to steps to within this fraction of a step.
 constexpr double step_rounding = 1e-9;
 constexpr double pi = 3.14159265358979323846;
+
+/// Adds the wall time of its scope to a phase total (s).
+class PhaseTimer {
+ public:
+  explicit PhaseTimer(double& total) : total_(total), start_(Clock::now()) {}
+  ~PhaseTimer() { total_ += std::chrono::duration<double>(Clock::now() - start_).count(); }
+  PhaseTimer(const PhaseTimer&) = delete;
+  PhaseTimer& operator=(const PhaseTimer&) = delete;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  double& total_;
+  Clock::time_point start_;
+};
 
 std::string pvd_document(const std::vector<SnapshotRecord>& snapshots) {
   std::string s =
@@ -37,6 +54,186 @@ double energy_of(const detail::Matrix& matrix, const detail::Vec& x, detail::Vec
   return 0.5 * (x * scratch);
 }
 
+const DynamicProblem& checked(const DynamicProblem& problem) {
+  if (!(problem.dt > 0.0) || !(problem.end_time > 0.0))
+    throw FemError("dynamic FEM needs dt > 0 and end_time > 0");
+  const double beta = problem.newmark.beta, gamma = problem.newmark.gamma;
+  if (!(beta > 0.0) || gamma < 0.5) throw FemError("Newmark needs beta > 0 and gamma >= 1/2");
+  if (problem.pulse && !(problem.pulse->duration > 0.0))
+    throw FemError("a traction pulse needs a duration > 0");
+  return problem;
+}
+
+/// The Newmark time loop of one DynamicProblem, in the order of the method: constraints and
+/// initial state, then K, M and the effective matrix K + c_u M with its solver (built once: the
+/// matrix does not change at a fixed dt), then per step the right-hand side, the solve and the
+/// update of a, v and u, with gauges, energies and snapshots recorded at their intervals.
+/// The effective matrix is factorised (sparse Cholesky) so that a step costs one product with
+/// M and two triangular solves.
+class NewmarkRun {
+ public:
+  explicit NewmarkRun(const DynamicProblem& problem);
+  DynamicResult run();
+
+ private:
+  void setup_system();
+  void assemble_system();
+  void assemble_rhs(double t);
+  void solve();
+  void update();
+  void record(double t);
+  void snapshot(double t);
+
+  dealii::Timer timer_;
+  const DynamicProblem& problem_;
+  const detail::Model model_;
+  const double dt_;  // s
+  // a_new = c_u (u_new - u) - c_v v - c_a a, the Newmark relations solved for a_new.
+  const double c_u_, c_v_, c_a_;
+  detail::Constraints constraints_;
+  detail::Matrix stiffness_, mass_;
+  std::unique_ptr<detail::DirectSolver> solver_;
+  detail::Vec patch_load_;  // N/m per Pa: nodal load of a unit pressure on the patch
+  std::vector<detail::Model::Probe> gauges_;  // one per problem gauge, located once
+  detail::Vec u_, v_, a_;   // state carried between steps: m, m/s, m/s^2
+  detail::Vec w_, rhs_, u_new_, scratch_;  // per-step scratch
+  DynamicResult result_;
+};
+
+NewmarkRun::NewmarkRun(const DynamicProblem& problem)
+    : problem_(checked(problem)),
+      model_(problem.mesh, problem.material, problem.discretisation),
+      dt_(problem.dt),
+      c_u_(1.0 / (problem.newmark.beta * dt_ * dt_)),
+      c_v_(1.0 / (problem.newmark.beta * dt_)),
+      c_a_(0.5 / problem.newmark.beta - 1.0) {}
+
+DynamicResult NewmarkRun::run() {
+  setup_system();
+  assemble_system();
+  result_.stats.setup_seconds = timer_.wall_time();
+  timer_.restart();
+
+  const auto steps = static_cast<int>(std::ceil(problem_.end_time / dt_ - step_rounding));
+  const auto every = std::max(1, static_cast<int>(std::lround(problem_.output_interval / dt_)));
+  const bool snapshots = !problem_.snapshot_directory.empty() && problem_.snapshot_interval > 0.0;
+  const auto every_snapshot =
+      std::max(1, static_cast<int>(std::lround(problem_.snapshot_interval / dt_)));
+  if (snapshots && detail::is_root())
+    std::filesystem::create_directories(problem_.snapshot_directory / "vtk");
+  record(0.0);
+  if (snapshots) snapshot(0.0);
+  for (int n = 1; n <= steps; ++n) {
+    assemble_rhs(n * dt_);
+    solve();
+    update();
+    if (n % every == 0 || n == steps) record(n * dt_);
+    if (snapshots && (n % every_snapshot == 0 || n == steps)) snapshot(n * dt_);
+  }
+  result_.steps = steps;
+  result_.stats.solve_seconds = timer_.wall_time();
+  result_.stats.cells = model_.n_cells();
+  result_.stats.dofs = model_.n_dofs();
+  return std::move(result_);
+}
+
+/// The held patch (u = 0 from t = 0) unless a pulse loads it; the initial rigid motion at v0
+/// towards -y with the held patch at rest and no stress; the gauges located in the mesh.
+void NewmarkRun::setup_system() {
+  const auto patch = model_.require_boundary(problem_.held_group);
+  if (!problem_.pulse)
+    for (const auto i : model_.boundary_dofs(patch, -1)) constraints_.add_line(i);
+  constraints_.close();
+
+  dealii::Vector<double> unit_load(model_.n_dofs());
+  if (problem_.pulse)
+    model_.add_pressure(
+        1.0, [patch](const detail::Point&, dealii::types::boundary_id b) { return b == patch ? 1.0 : 0.0; },
+        unit_load);
+  patch_load_ = detail::to_trilinos(unit_load, model_);
+
+  dealii::Vector<double> v_initial(model_.n_dofs());
+  for (dealii::types::global_dof_index i = 0; i < model_.n_dofs(); ++i)
+    if (model_.dof_component(i) == 1 && !constraints_.is_constrained(i)) v_initial[i] = -problem_.v0;
+  v_ = detail::to_trilinos(v_initial, model_);
+  for (const auto& gauge : problem_.gauges) {
+    auto probe = model_.probe(detail::Point(gauge.x, gauge.y));
+    if (!probe) throw FemError("gauge " + gauge.name + " is outside the FEM body");
+    gauges_.push_back(std::move(*probe));
+  }
+  for (auto* x : {&u_, &a_, &w_, &rhs_, &u_new_, &scratch_}) *x = model_.make_vector();
+}
+
+/// K and the consistent M with the constraints condensed, and the effective matrix of the
+/// step, K + c_u M, factorised.
+void NewmarkRun::assemble_system() {
+  model_.make_sparse_matrix(stiffness_, constraints_);
+  model_.make_sparse_matrix(mass_, constraints_);
+  model_.assemble(constraints_, stiffness_, &mass_);
+  detail::Matrix effective;
+  effective.copy_from(stiffness_);
+  effective.add(c_u_, mass_);
+  solver_ = std::make_unique<detail::DirectSolver>(effective);
+  result_.stats.solver = detail::DirectSolver::name;
+}
+
+/// (K + c_u M) u_new = M (c_u u + c_v v + c_a a) + f(t).
+void NewmarkRun::assemble_rhs(double t) {
+  const PhaseTimer timing(result_.times.rhs);
+  const double *u = u_.begin(), *v = v_.begin(), *a = a_.begin();
+  double* w = w_.begin();
+  const std::ptrdiff_t owned = w_.end() - w_.begin();
+  for (std::ptrdiff_t i = 0; i < owned; ++i) w[i] = c_u_ * u[i] + c_v_ * v[i] + c_a_ * a[i];
+  mass_.vmult(rhs_, w_);
+  if (problem_.pulse) rhs_.add(problem_.pulse->pressure(t), patch_load_);
+}
+
+void NewmarkRun::solve() {
+  const PhaseTimer timing(result_.times.solve);
+  solver_->solve(u_new_, rhs_);
+}
+
+/// a_new = c_u (u_new - u) - c_v v - c_a a;  v += dt ((1 - gamma) a + gamma a_new).
+void NewmarkRun::update() {
+  const PhaseTimer timing(result_.times.update);
+  const double gamma = problem_.newmark.gamma;
+  const double v_from_a = dt_ * (1.0 - gamma), v_from_a_new = dt_ * gamma;  // s
+  const double* u_new = u_new_.begin();
+  double *u = u_.begin(), *v = v_.begin(), *a = a_.begin();
+  const std::ptrdiff_t owned = u_.end() - u_.begin();  // entry-wise: no communication
+  for (std::ptrdiff_t i = 0; i < owned; ++i) {
+    const double a_new = c_u_ * u_new[i] - c_u_ * u[i] - c_v_ * v[i] - c_a_ * a[i];
+    v[i] = v[i] + v_from_a * a[i] + v_from_a_new * a_new;
+    a[i] = a_new;
+    u[i] = u_new[i];
+  }
+}
+
+void NewmarkRun::record(double t) {
+  {
+    const PhaseTimer timing(result_.times.gauges);
+    const auto displacement = detail::to_serial(u_);
+    for (std::size_t g = 0; g < gauges_.size(); ++g) {
+      const auto& gauge = problem_.gauges[g];
+      const Stress2 s = model_.stress_at(displacement, gauges_[g]);
+      result_.gauges.push_back({t, g, make_sample(gauge.x, gauge.y, s)});
+    }
+  }
+  const PhaseTimer timing(result_.times.energy);
+  result_.energy.push_back({t, energy_of(mass_, v_, scratch_), energy_of(stiffness_, u_, scratch_)});
+}
+
+void NewmarkRun::snapshot(double t) {
+  const PhaseTimer timing(result_.times.output);
+  char name[64];
+  std::snprintf(name, sizeof name, "vtk/snapshot_%06zu.vtu", result_.snapshots.size());
+  result_.snapshots.push_back({t, name});
+  const auto displacement = detail::to_serial(u_), velocity = detail::to_serial(v_);
+  model_.write_vtu(displacement, problem_.snapshot_directory / name, &velocity);
+  if (detail::is_root())
+    common::write_whole_text(problem_.snapshot_directory / "run.pvd", pvd_document(result_.snapshots));
+}
+
 }  // namespace
 
 double TractionPulse::pressure(double t) const {
@@ -44,107 +241,6 @@ double TractionPulse::pressure(double t) const {
   return peak * std::sin(pi * t / duration);
 }
 
-DynamicResult run_dynamic(const DynamicProblem& problem) {
-  if (!(problem.dt > 0.0) || !(problem.end_time > 0.0))
-    throw FemError("dynamic FEM needs dt > 0 and end_time > 0");
-  const double beta = problem.newmark.beta, gamma = problem.newmark.gamma;
-  if (!(beta > 0.0) || gamma < 0.5) throw FemError("Newmark needs beta > 0 and gamma >= 1/2");
-  dealii::Timer timer;
-  DynamicResult result;
-  const detail::Model model(problem.mesh, problem.material, problem.discretisation);
-
-  if (problem.pulse && !(problem.pulse->duration > 0.0))
-    throw FemError("a traction pulse needs a duration > 0");
-  const auto patch = model.require_boundary(problem.held_group);
-  detail::Constraints constraints;
-  if (!problem.pulse)
-    for (const auto i : model.boundary_dofs(patch, -1)) constraints.add_line(i);
-  constraints.close();
-  // Nodal load of a unit pressure on the patch (the pulse scales it).
-  dealii::Vector<double> unit_load(model.n_dofs());
-  if (problem.pulse)
-    model.add_pressure(
-        1.0, [patch](const detail::Point&, dealii::types::boundary_id b) { return b == patch ? 1.0 : 0.0; },
-        unit_load);
-  const detail::Vec patch_load = detail::to_trilinos(unit_load, model);
-
-  detail::Matrix stiffness, mass, effective;
-  model.make_sparse_matrix(stiffness, constraints);
-  model.make_sparse_matrix(mass, constraints);
-  model.assemble(constraints, stiffness, &mass);
-  const double dt = problem.dt;
-  const double c_u = 1.0 / (beta * dt * dt), c_v = 1.0 / (beta * dt), c_a = 0.5 / beta - 1.0;
-  effective.copy_from(stiffness);
-  effective.add(c_u, mass);
-  const detail::ElasticSolver solver(effective, model, problem.solver);
-
-  // Initial state: rigid motion at v0 towards -y, the held patch at rest, no stress.
-  dealii::Vector<double> v_initial(model.n_dofs());
-  for (dealii::types::global_dof_index i = 0; i < model.n_dofs(); ++i)
-    if (model.dof_component(i) == 1 && !constraints.is_constrained(i)) v_initial[i] = -problem.v0;
-  detail::Vec u = model.make_vector(), a = model.make_vector(), w = model.make_vector();
-  detail::Vec rhs = model.make_vector(), u_new = model.make_vector(), scratch = model.make_vector();
-  detail::Vec v = detail::to_trilinos(v_initial, model);
-  result.stats.setup_seconds = timer.wall_time();
-  timer.restart();
-
-  auto record = [&](double t) {
-    const auto displacement = detail::to_serial(u);
-    for (std::size_t g = 0; g < problem.gauges.size(); ++g) {
-      const auto& gauge = problem.gauges[g];
-      const auto s = model.stress_at(displacement, detail::Point(gauge.x, gauge.y));
-      if (!s) throw FemError("gauge " + gauge.name + " is outside the FEM body");
-      result.gauges.push_back({t, g, make_sample(gauge.x, gauge.y, *s)});
-    }
-    result.energy.push_back({t, energy_of(mass, v, scratch), energy_of(stiffness, u, scratch)});
-  };
-
-  const bool snapshots = !problem.snapshot_directory.empty() && problem.snapshot_interval > 0.0;
-  if (snapshots && detail::is_root())
-    std::filesystem::create_directories(problem.snapshot_directory / "vtk");
-  auto snapshot = [&](double t) {
-    char name[64];
-    std::snprintf(name, sizeof name, "vtk/snapshot_%06zu.vtu", result.snapshots.size());
-    result.snapshots.push_back({t, name});
-    const auto displacement = detail::to_serial(u), velocity = detail::to_serial(v);
-    model.write_vtu(displacement, problem.snapshot_directory / name, &velocity);
-    if (detail::is_root())
-      common::write_whole_text(problem.snapshot_directory / "run.pvd",
-                               pvd_document(result.snapshots));
-  };
-
-  const auto steps = static_cast<int>(std::ceil(problem.end_time / dt - step_rounding));
-  const auto every = std::max(1, static_cast<int>(std::lround(problem.output_interval / dt)));
-  const auto every_snapshot =
-      std::max(1, static_cast<int>(std::lround(problem.snapshot_interval / dt)));
-  record(0.0);
-  if (snapshots) snapshot(0.0);
-  for (int n = 1; n <= steps; ++n) {
-    // M (c_u u + c_v v + c_a a) = (K + c_u M) u_new
-    w.equ(c_u, u);
-    w.add(c_v, v);
-    w.add(c_a, a);
-    mass.vmult(rhs, w);
-    if (problem.pulse) rhs.add(problem.pulse->pressure(n * dt), patch_load);
-    u_new = u;
-    result.stats.iterations += solver.solve(u_new, rhs);
-    // a_new = c_u (u_new - u) - c_v v - c_a a;  v += dt ((1 - gamma) a + gamma a_new)
-    w.equ(c_u, u_new);
-    w.add(-c_u, u);
-    w.add(-c_v, v);
-    w.add(-c_a, a);
-    v.add(dt * (1.0 - gamma), a);
-    v.add(dt * gamma, w);
-    a = w;
-    u = u_new;
-    if (n % every == 0 || n == steps) record(n * dt);
-    if (snapshots && (n % every_snapshot == 0 || n == steps)) snapshot(n * dt);
-  }
-  result.steps = steps;
-  result.stats.solve_seconds = timer.wall_time();
-  result.stats.cells = model.n_cells();
-  result.stats.dofs = model.n_dofs();
-  return result;
-}
+DynamicResult run_dynamic(const DynamicProblem& problem) { return NewmarkRun(problem).run(); }
 
 }  // namespace ddafrac::fem

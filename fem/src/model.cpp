@@ -319,23 +319,36 @@ std::optional<Model::Located> Model::locate(const Point& p) const {
   return best;
 }
 
-std::optional<Stress2> Model::stress_at(const dealii::Vector<double>& u, const Point& p) const {
+std::optional<Model::Probe> Model::probe(const Point& p) const {
   const auto where = locate(p);
   if (!where) return std::nullopt;
   dealii::Tensor<2, dim> j;
   geometry_map(where->cell->active_cell_index(), where->unit, &j);
   const auto inverse = dealii::invert(j);
-  std::vector<global_dof_index> indices(fe_->n_dofs_per_cell());
+  Probe out;
+  out.dofs.resize(fe_->n_dofs_per_cell());
   typename DofHandler::active_cell_iterator cell(&tria_, where->cell->level(),
                                                  where->cell->index(), &dof_handler_);
-  cell->get_dof_indices(indices);
-  dealii::Tensor<2, dim> grad;
-  for (unsigned int i = 0; i < indices.size(); ++i) {
+  cell->get_dof_indices(out.dofs);
+  for (unsigned int i = 0; i < out.dofs.size(); ++i) {
     const auto [component, node] = fe_->system_to_component_index(i);
-    const auto g = scalar_fe_->shape_grad(node, where->unit) * inverse;  // J^-T grad
-    grad[component] += u[indices[i]] * g;
+    out.components.push_back(component);
+    out.gradients.push_back(scalar_fe_->shape_grad(node, where->unit) * inverse);  // J^-T grad
   }
+  return out;
+}
+
+Stress2 Model::stress_at(const dealii::Vector<double>& u, const Probe& probe) const {
+  dealii::Tensor<2, dim> grad;
+  for (std::size_t i = 0; i < probe.dofs.size(); ++i)
+    grad[probe.components[i]] += u[probe.dofs[i]] * probe.gradients[i];
   return stress_of(lame(material_), grad);
+}
+
+std::optional<Stress2> Model::stress_at(const dealii::Vector<double>& u, const Point& p) const {
+  const auto where = probe(p);
+  if (!where) return std::nullopt;
+  return stress_at(u, *where);
 }
 
 std::optional<BoundaryId> Model::boundary_id(const std::string& group) const {
@@ -541,13 +554,15 @@ dealii::Vector<double> to_serial(const Vec& v) {
 }
 
 void sum_over_ranks(dealii::Vector<double>& v) {
-  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1) return;
+  if (single_rank()) return;
   const dealii::Vector<double> local(v);
   dealii::Utilities::MPI::sum(dealii::make_array_view(local), MPI_COMM_WORLD,
                               dealii::make_array_view(v));
 }
 
 bool is_root() { return dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0; }
+
+bool single_rank() { return dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1; }
 
 ElasticSolver::ElasticSolver(const Matrix& matrix, const Model& model,
                              const SolverSettings& settings)

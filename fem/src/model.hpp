@@ -90,8 +90,19 @@ class Model {
 
   Vec make_vector() const { return Vec(owned_, MPI_COMM_WORLD); }
 
-  /// Stress of the displacement field u (full vector) at a point; nullopt if the point is
-  /// outside the body. Local: every rank holds every cell and the whole of u.
+  /// A point located once in the mesh: the DoFs of its cell and the gradient (1/m) of each
+  /// one's shape function there, so that reading the stress at the point again is a short sum.
+  struct Probe {
+    std::vector<dealii::types::global_dof_index> dofs;
+    std::vector<unsigned int> components;
+    std::vector<dealii::Tensor<1, dim>> gradients;
+  };
+  /// The probe of a point; nullopt if the point is outside the body.
+  std::optional<Probe> probe(const Point& p) const;
+  /// Stress of the displacement field u (full vector) at a probe. Local: every rank holds every
+  /// cell and the whole of u.
+  Stress2 stress_at(const dealii::Vector<double>& u, const Probe& probe) const;
+  /// The same at a point (located again at every call); nullopt if it is outside the body.
   std::optional<Stress2> stress_at(const dealii::Vector<double>& u, const Point& p) const;
   /// All cells, written whole by rank 0 (u and the optional velocity full, the same on every
   /// rank).
@@ -138,6 +149,7 @@ class Model {
 /// CG + ML AMG (rigid-body modes as the near null space) on one matrix, set up once.
 class ElasticSolver {
  public:
+  static constexpr const char* name = "CG + ML AMG";
   ElasticSolver(const Matrix& matrix, const Model& model, const SolverSettings& settings);
   ~ElasticSolver();
   /// Solves and returns the iteration count; throws FemError if CG did not converge.
@@ -157,5 +169,7 @@ dealii::Vector<double> to_serial(const Vec& v);
 void sum_over_ranks(dealii::Vector<double>& v);
 /// True on the rank that writes files.
 bool is_root();
+/// True if this process is the only rank (it holds every row of every matrix).
+bool single_rank();
 
 }  // namespace ddafrac::fem::detail

@@ -138,6 +138,7 @@ StaticSolution solve_static(const StaticProblem& problem) {
     if (!constraints.is_constrained(i)) rhs[i] += load[i];
   const detail::ElasticSolver solver(stiffness, model, problem.solver);
   impl->stats.setup_seconds = timer.wall_time();
+  impl->stats.solver = detail::ElasticSolver::name;
 
   timer.restart();
   detail::Vec x = model.make_vector();

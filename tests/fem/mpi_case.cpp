@@ -79,8 +79,8 @@ void write_dynamic(std::ofstream& out, const std::filesystem::path& snapshots) {
   }
   for (const auto& e : r.energy)
     out << fmt::format("energy,{:.3g},total,{:.17g}\n", e.t, e.kinetic + e.strain);
-  std::fprintf(stderr, "dynamic: %zu dofs, %d steps, %d CG iterations, %.2f s\n", r.stats.dofs,
-               r.steps, r.stats.iterations, r.stats.setup_seconds + r.stats.solve_seconds);
+  std::fprintf(stderr, "dynamic: %zu dofs, %d steps, %s, %.2f s\n", r.stats.dofs, r.steps,
+               r.stats.solver.c_str(), r.stats.setup_seconds + r.stats.solve_seconds);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Issue 5, test 5: the same small static Hondros discs (triangles and quads, p = 2) and the same
 // short impact response solved serially and with `mpirun -np 2` (the mesh partitioned by METIS,
-// assembly and CG + AMG distributed) give the same stresses to the solver tolerance.
+// assembly distributed; static: CG + AMG distributed; dynamic: the gathered matrix factorised on
+// every rank) give the same stresses to the solver tolerance.
 
 #define BOOST_TEST_MODULE fem_mpi
 #include <boost/test/unit_test.hpp>

@@ -62,7 +62,7 @@ struct GaugeHistories {
   double kn = 0.0;   // N/m, joint normal stiffness used
   // FEM only.
   std::size_t dofs = 0;
-  long fem_iterations = 0;
+  std::string fem_solver;  // the linear solver
 };
 
 /// The DDA twin (see the top of this file).
