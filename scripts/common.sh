@@ -10,7 +10,7 @@ DDAFRAC_PACKAGES=(
   cmake g++ make pkg-config
   libeigen3-dev libgmsh-dev libboost-test-dev
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libfmt-dev libcairo2-dev
-  libdeal.ii-dev openmpi-bin
+  libdeal.ii-dev libsuitesparse-dev openmpi-bin
   python3-matplotlib
 )
 

@@ -46,30 +46,6 @@ bool all_vertices_finite(const dda::BlockSystem& b) {
   return true;
 }
 
-/// Work of gravity on every block during the last accepted step: the block centroid moves by the
-/// step's (u0, v0) exactly (the block displacement is affine), gravity is constant.
-double gravity_work(const dda::Engine& e) {
-  const auto& g = e.scene().analysis.gravity;
-  if (g[0] == 0.0 && g[1] == 0.0) return 0.0;
-  const auto& d = e.last_displacement();
-  const auto& mass = e.blocks().mass;
-  double w = 0.0;
-  for (std::size_t i = 0; i < d.size(); ++i) w += mass[i] * (g[0] * d[i][0] + g[1] * d[i][1]);
-  return w;
-}
-
-/// Work of the fixed/prescribed-point springs on their bodies from `before` to `after`
-/// (trapezoidal: the spring force is linear in the displacement within a step).
-double anchor_work(const std::vector<dda::Engine::BodyLoad>& before, const std::vector<dda::Engine::BodyLoad>& after) {
-  double w = 0.0;
-  for (std::size_t k = 0; k < std::min(before.size(), after.size()); ++k) {
-    const auto& p = before[k];
-    const auto& q = after[k];
-    w += 0.5 * (p.fx + q.fx) * (q.ux - p.ux) + 0.5 * (p.fy + q.fy) * (q.uy - p.uy);
-  }
-  return w;
-}
-
 bool contains_all(const std::string& text, const std::vector<std::string>& parts) {
   return std::all_of(parts.begin(), parts.end(), [&](const std::string& p) { return text.find(p) != std::string::npos; });
 }
@@ -171,11 +147,14 @@ std::vector<StabilityCase> stability_cases() {
   add({"kn-1e2E-dynamic", "kn/E = 1e2 (kn = 1.05e12 N/m), impact 3.5 m/s", impact,
        {impact_blocks, fmt::format("analysis.penalty={:.6g}", 1e2 * young)}, std::nullopt, 50e-6, 0, 120.0,
        Expectation::Stable, {}});
+  // Block-Jacobi PCG needs hundreds of iterations per solve at kn/E >= 1e3: the stiff dynamic
+  // cases use the sparse direct solver (same system, same answer to round-off).
+  const std::string direct = "analysis.solver=\"direct\"";
   add({"kn-1e3E-dynamic", "kn/E = 1e3 (kn = 1.05e13 N/m), impact 3.5 m/s", impact,
-       {impact_blocks, fmt::format("analysis.penalty={:.6g}", 1e3 * young)}, std::nullopt, 100e-6, 0, 120.0,
+       {impact_blocks, direct, fmt::format("analysis.penalty={:.6g}", 1e3 * young)}, std::nullopt, 100e-6, 0, 900.0,
        Expectation::Stable, {}});
-  add({"kn-1e4E-dynamic", "kn/E = 1e4 (kn = 1.05e14 N/m), impact 3.5 m/s", impact, {impact_blocks, kn_1e4}, std::nullopt,
-       100e-6, 0, 120.0, Expectation::Stable, {}});
+  add({"kn-1e4E-dynamic", "kn/E = 1e4 (kn = 1.05e14 N/m), impact 3.5 m/s", impact, {impact_blocks, direct, kn_1e4},
+       std::nullopt, 100e-6, 0, 900.0, Expectation::Stable, {}});
   add({"kn-1e4E-static", "kn/E = 1e4, static mode, platen 0.25 m/s", flattened,
        {blocks, kn_1e4, "analysis.mode=\"static\""}, std::nullopt, 200e-6, 0, 120.0, Expectation::Stable, {}});
   add({"dt-1e-5-static", "dt_max = 1e-5 s, static mode, platen 0.25 m/s to 0.5 mm (past the peak)", flattened,
@@ -234,12 +213,9 @@ StabilityResult run_stability_case(const StabilityCase& c, const std::filesystem
     r.blocks = e.blocks().block_count();
     r.penetration_allowed = kPenetrationAllowanceFactor * mean_smallest_altitude(e.blocks());
 
-    const dda::Energies e0 = e.energies();
-    const double energy0 = e0.kinetic + e0.strain + e0.contact;
-    double work = 0.0;
+    const double energy0 = e.energies().stored();
     r.energy_max = energy0;
     r.supplied_max = energy0;
-    std::vector<dda::Engine::BodyLoad> loads = e.body_loads();
     double last_progress = t0;
     const double end = c.end_time;
     for (;;) {
@@ -258,11 +234,9 @@ StabilityResult run_stability_case(const StabilityCase& c, const std::filesystem
       }
       const dda::StepReport rep = e.step(end - e.time());
       r.steps = rep.step;
-      const std::vector<dda::Engine::BodyLoad> now = e.body_loads();
-      work += gravity_work(e) + anchor_work(loads, now);
-      loads = now;
-      const double energy = rep.energy.kinetic + rep.energy.strain + rep.energy.contact;
-      const double supplied = energy0 + work;
+      const double energy = rep.ledger.stored.stored();
+      const double supplied = rep.ledger.initial + rep.ledger.work();
+      r.balance_error = rep.ledger.largest_balance_error;
       if (!std::isfinite(energy) || !std::isfinite(supplied) || !std::isfinite(rep.max_penetration) ||
           !all_vertices_finite(e.blocks())) {
         r.nan = true;
@@ -343,14 +317,14 @@ StabilityResult run_stability_case(const StabilityCase& c, const std::filesystem
 std::string stability_csv(const std::vector<StabilityResult>& results) {
   std::string out =
       "case,mode,extreme,blocks,aspect,steps,time,end_time,end_reached,nan,energy_max,supplied_max,energy_ratio,"
-      "energy_ratio_step,energy_bound_factor,penetration_max,penetration_allowed,cuts_displacement,cuts_open_close,"
+      "energy_ratio_step,energy_bound_factor,balance_error,penetration_max,penetration_allowed,cuts_displacement,cuts_open_close,"
       "cuts_solver,dt_min,dt_max,cracks,wall,exit_status,verdict,as_expected,message\n";
   for (const auto& r : results)
-    out += fmt::format("{},{},{},{},{:.4g},{},{:.9g},{:.9g},{},{},{:.6g},{:.6g},{:.6g},{},{},{:.6g},{:.6g},{},{},{},{:.6g},{:.6g},"
-                       "{},{:.3f},{},{},{},{}\n",
+    out += fmt::format("{},{},{},{},{:.4g},{},{:.9g},{:.9g},{},{},{:.6g},{:.6g},{:.6g},{},{},{:.3g},{:.6g},{:.6g},{},{},{},{:.6g},"
+                       "{:.6g},{},{:.3f},{},{},{},{}\n",
                        r.name, r.mode, csv_field(r.extreme), r.blocks, r.aspect, r.steps, r.time, r.end_time,
                        r.end_reached ? 1 : 0, r.nan ? 1 : 0, r.energy_max, r.supplied_max, r.energy_ratio,
-                       r.energy_ratio_step, kEnergyBoundFactor, r.penetration_max, r.penetration_allowed,
+                       r.energy_ratio_step, kEnergyBoundFactor, r.balance_error, r.penetration_max, r.penetration_allowed,
                        r.cuts_displacement, r.cuts_open_close, r.cuts_solver, r.dt_min, r.dt_max, r.cracks, r.wall,
                        r.exit_status, csv_field(r.verdict_text), r.as_expected ? 1 : 0, csv_field(r.message));
   return out;
@@ -358,22 +332,25 @@ std::string stability_csv(const std::vector<StabilityResult>& results) {
 
 std::string stability_markdown(const std::vector<StabilityResult>& results) {
   std::string out = fmt::format(
-      "Energy bound: E(t) ≤ {:.2f} · S(t) at every step, E = kinetic + strain + contact-spring energy, S = E(0) + work "
-      "of gravity and of the fixed/prescribed-point springs so far. Penetration allowance: {:.2g} × the mean smallest "
-      "altitude of the triangular blocks.\n\n",
+      "Energy bound: E(t) ≤ {:.3f} · S(t) at every step, E = kinetic + strain + contact-spring + anchor-spring energy, "
+      "S = E(0) + work of gravity, point loads and moving supports so far (the engine's energy ledger). Penetration "
+      "allowance: {:.2g} × the mean smallest altitude of the triangular blocks.\n\n",
       kEnergyBoundFactor, kPenetrationAllowanceFactor);
   out +=
-      "| case | mode | what is extreme | blocks | steps | end reached | max E/S | max penetration / allowed | dt cuts "
-      "(displ. / open–close / solver) | open–close failures | min dt (s) | cracks | wall (s) | exit | verdict |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "| case | mode | what is extreme | blocks | steps | end reached | max E/S | balance error | missed contacts | max "
+      "penetration / allowed | dt cuts (displ. / open–close / solver) | open–close failures | min dt (s) | cracks | wall (s) | "
+      "exit | verdict |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : results) {
     const std::string reached = r.end_reached ? "yes" : fmt::format("no (t = {:.3g} s)", r.time);
     const std::string pen = r.penetration_allowed > 0.0
                                 ? fmt::format("{:.2e} / {:.2e} m ({:.2g})", r.penetration_max, r.penetration_allowed,
                                               r.penetration_max / r.penetration_allowed)
                                 : std::string("–");
-    out += fmt::format("| {} | {} | {} | {} | {} | {} | {:.3f} | {} | {} ({} / {} / {}) | {} | {:.2e} | {} | {:.1f} | {} | {} |\n",
-                       r.name, r.mode, md_field(r.extreme), r.blocks, r.steps, reached, r.energy_ratio, pen,
+    out += fmt::format("| {} | {} | {} | {} | {} | {} | {:.4f} | {:.2e} | {} | {} | {} ({} / {} / {}) | {} | {:.2e} | {} | {:.1f} | "
+                       "{} | {} |\n",
+                       r.name, r.mode, md_field(r.extreme), r.blocks, r.steps, reached, r.energy_ratio, r.balance_error,
+                       r.missed_contacts, pen,
                        r.cuts_displacement + r.cuts_open_close + r.cuts_solver, r.cuts_displacement, r.cuts_open_close,
                        r.cuts_solver, r.cuts_open_close, r.dt_min, r.cracks, r.wall, r.exit_status,
                        md_field(r.verdict_text));

@@ -40,7 +40,10 @@ void check_stable(const StabilityResult& r, const StabilityCase& c) {
   BOOST_TEST(r.end_reached);
   // The end time is reached exactly (the last step is shortened to land on it).
   BOOST_TEST(std::abs(r.time - c.end_time) <= 1e-9 * c.end_time);
-  // Energy bound E(t) ≤ 1.05 · S(t) at every step (stability.hpp states why 5%).
+  // Energy bound E(t) ≤ 1.005 · S(t) at every step (stability.hpp states why 0.5%), no contact
+  // found already overlapping, and the ledger closes within 1%.
+  BOOST_TEST(r.missed_contacts == 0);
+  BOOST_TEST(r.balance_error <= 0.01);
   BOOST_TEST(r.energy_ratio <= kEnergyBoundFactor);
   // ... and the ratio is a real measurement: something was supplied and something is stored.
   BOOST_TEST(r.supplied_max > 0.0);
@@ -95,6 +98,20 @@ BOOST_AUTO_TEST_CASE(platens_100x_stiffer_run_to_the_end_stably) {
   const StabilityCase c = study_case("contrast-100-dynamic");
   omp_set_num_threads(1);
   check_stable(run_stability_case(c, kScenes), c);
+}
+
+// Dynamic contact at kn/E = 1e3 and 1e4 gained energy 5.8x and 51.6x while node-sharing
+// triangles were found already overlapping; paired at their shared node they stay within the
+// bound with no missed contact.
+// The study runs them to 100 µs; the test to the first 20 µs of the impact, where the gain
+// appeared before (open–close cuts make these cases thousands of steps long).
+BOOST_AUTO_TEST_CASE(stiff_dynamic_contact_1e3_and_1e4_E_never_gains_energy) {
+  omp_set_num_threads(2);
+  for (const char* name : {"kn-1e3E-dynamic", "kn-1e4E-dynamic"}) {
+    StabilityCase c = study_case(name);
+    c.end_time = 20e-6;
+    check_stable(run_stability_case(c, kScenes), c);
+  }
 }
 
 // kn/E = 1e4 in static mode (velocities reset every step), platen at 0.25 m/s for 200 µs.

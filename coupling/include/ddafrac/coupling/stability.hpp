@@ -5,14 +5,13 @@
 // run at all. For each case: no NaN, energy bounded, penetration against its allowance, dt cuts
 // by reason, open–close failures, wall time and a verdict. No deal.II: builds without the FEM.
 //
-// Energy bound (stated once, used by the study and its test): with E(t) = kinetic + strain +
-// contact-spring energy of all blocks (Engine::energies) and the energy supplied so far
-// S(t) = E(0) + W_gravity(t) + W_anchors(t) (work of gravity on every block, plus work of the
-// fixed/prescribed-point springs on their blocks: how a moving platen loads the disc), a
-// dissipative run keeps E(t) ≤ S(t). The case passes if E(t) ≤ kEnergyBoundFactor · S(t) at every
-// accepted step. The DDA scheme (Newmark γ = 1, β = ½) only removes energy; the 5% margin covers
-// the trapezoidal estimate of the anchor work (second-order in dt) and the spring energy a contact
-// brings when it closes with a finite penetration inside one step.
+// Energy bound (stated once, used by the study and its test), from the engine's energy ledger
+// (dda/energy_ledger.hpp): with E(t) the stored energy (kinetic + strain + contact springs +
+// anchor springs) and S(t) = E(0) + the work of gravity, point loads and moving supports so far,
+// a run that creates no energy keeps E(t) ≤ S(t): the DDA scheme (Newmark γ = 1, β = ½) only
+// removes energy. The case passes if E(t) ≤ kEnergyBoundFactor · S(t) at every accepted step;
+// the 0.5% margin covers what the linearised step cannot see (gaps and areas recomputed on the
+// moved geometry), which the ledger's balance error measures (the table shows its largest value).
 
 #include <filesystem>
 #include <functional>
@@ -25,7 +24,7 @@
 namespace ddafrac::coupling {
 
 /// E(t) ≤ kEnergyBoundFactor · S(t) at every step (see above).
-constexpr double kEnergyBoundFactor = 1.05;
+constexpr double kEnergyBoundFactor = 1.005;
 
 /// Allowed penetration = this × the mean over the triangulated blocks of each block's smallest
 /// altitude (2·area / longest edge): deeper than that, a vertex may be judged against the wrong
@@ -89,6 +88,7 @@ struct StabilityResult {
   double energy_ratio = 0.0;        // max over steps of E(t) / S(t)
   long energy_ratio_step = 0;       // where that maximum was
   double supplied_max = 0.0;        // J/m, largest S(t)
+  double balance_error = 0.0;       // largest |balance error| of the energy ledger
   double penetration_max = 0.0;     // m
   double penetration_allowed = 0.0; // m
   long cuts_displacement = 0, cuts_open_close = 0, cuts_solver = 0;
