@@ -60,17 +60,46 @@ def save(figure, path):
     print(f"wrote {path}")
 
 
+# The energy ledger as stacked areas (stored, then dissipated), against the energy supplied.
+LEDGER_STORED = (("kinetic_energy", "kinetic"), ("strain_energy", "strain"), ("contact_energy", "contact springs"),
+                 ("support_energy", "support springs"))
+LEDGER_DISSIPATED = (("friction_dissipation", "friction"), ("joint_break_loss", "joint breaks"),
+                     ("numerical_dissipation", "time scheme"))
+LEDGER_WORK = ("work_gravity", "work_loads", "work_supports")
+
+
 def plot_energy(history, out_dir, title):
     t = numbers(history, "t") * MICROSECONDS
-    figure, axes = plt.subplots(figsize=(7, 4))
-    for key, label in (("kinetic_energy", "kinetic"), ("strain_energy", "strain"), ("contact_energy", "contact springs")):
-        if key in history:
-            axes.plot(t, numbers(history, key), label=label)
-    axes.set_xlabel("time (µs)")
+    if "balance_error" not in history:  # a run written before the ledger: energies alone
+        figure, axes = plt.subplots(figsize=(7, 4))
+        for key, label in LEDGER_STORED[:3]:
+            if key in history:
+                axes.plot(t, numbers(history, key), label=label)
+        axes.set_xlabel("time (µs)")
+        axes.set_ylabel("energy (J per m thickness)")
+        axes.set_title(f"{title}: energies")
+        axes.grid(alpha=0.3)
+        axes.legend()
+        save(figure, os.path.join(out_dir, "energy.png"))
+        return
+    layers = [numbers(history, key) for key, _ in LEDGER_STORED + LEDGER_DISSIPATED]
+    labels = [label for _, label in LEDGER_STORED] + [f"dissipated: {label}" for _, label in LEDGER_DISSIPATED]
+    stored0 = sum(numbers(history, key)[0] for key, _ in LEDGER_STORED)
+    supplied = stored0 + sum(numbers(history, key) for key in LEDGER_WORK)
+    balance = numbers(history, "balance_error")
+    figure, (axes, error_axes) = plt.subplots(2, 1, figsize=(7, 6), sharex=True,
+                                              gridspec_kw={"height_ratios": [3, 1]})
+    axes.stackplot(t, layers, labels=labels, alpha=0.85)
+    axes.plot(t, supplied, "k--", linewidth=1.2, label="supplied: initial + work")
     axes.set_ylabel("energy (J per m thickness)")
-    axes.set_title(f"{title}: energies")
+    axes.set_title(f"{title}: energy ledger")
     axes.grid(alpha=0.3)
-    axes.legend()
+    axes.legend(fontsize=7, loc="lower left")
+    error_axes.plot(t, 100.0 * balance, color="tab:red")
+    error_axes.axhline(0.0, color="k", linewidth=0.6)
+    error_axes.set_xlabel("time (µs)")
+    error_axes.set_ylabel("balance error (%)")
+    error_axes.grid(alpha=0.3)
     save(figure, os.path.join(out_dir, "energy.png"))
 
 
