@@ -1,0 +1,41 @@
+#pragma once
+// A whole scene run against the energy bound (used by dda_scenes and the slow full-size test).
+
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "ddafrac/dda/engine.hpp"
+#include "ddafrac/meshes/generate.hpp"
+#include "ddafrac/scene/parse.hpp"
+
+namespace ddafrac::dda::testing {
+
+/// Runs a scene to its end time and checks that it never stores more than it was given: at every
+/// step kinetic + strain + contact + support energy stays within the initial energy plus the work
+/// of gravity plus 0.5% of the initial energy; no contact is found deeper than one step's allowed
+/// displacement; the ledger closes within 1%.
+inline void check_never_gains_energy(const std::filesystem::path& scene_path) {
+  const scene::Scene sc = scene::load_scene(scene_path, {});
+  const meshes::Mesh mesh = meshes::generate_dda_mesh(sc.geometry, sc.mesh);
+  Engine e(sc, mesh);
+  const double end = sc.analysis.end_time;
+  double largest_gain = -1e300;
+  while (e.time() < end * (1.0 - 1e-9)) {
+    const EnergyLedger& l = e.step(end - e.time()).ledger;
+    largest_gain = std::max(largest_gain, l.stored.stored() - (l.initial + l.total.work_gravity));
+  }
+  const EnergyLedger& l = e.ledger();
+  BOOST_TEST_MESSAGE(scene_path.filename().string()
+                     << ": " << e.blocks().block_count() << " blocks, " << e.statistics().steps << " steps, initial "
+                     << l.initial << " J/m, largest gain over initial + gravity's work " << largest_gain
+                     << " J/m, friction " << l.total.friction << ", breaks " << l.total.joint_breaks << ", numerical "
+                     << l.total.numerical << ", largest balance error " << l.largest_balance_error << ", cracks "
+                     << e.crack_counts().total);
+  BOOST_TEST(largest_gain <= 0.005 * l.initial);
+  BOOST_TEST(e.statistics().missed_contacts == 0);
+  BOOST_TEST(l.largest_balance_error <= 0.01);
+}
+
+}  // namespace ddafrac::dda::testing
