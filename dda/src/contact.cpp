@@ -426,9 +426,10 @@ const Contact* swapped_corner(const std::vector<Contact>& previous, const Contac
 
 }  // namespace
 
-void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Contact>& current,
-                            const std::vector<Joint>& joints, const BlockSystem& blocks) {
+std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& previous, std::vector<Contact>& current,
+                                                 const std::vector<Joint>& joints, const BlockSystem& blocks) {
   const auto n = static_cast<std::int64_t>(current.size());
+  std::vector<std::uint8_t> carried(previous.size(), 0);
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < n; ++k) {
     Contact& c = current[k];
@@ -442,6 +443,8 @@ void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Co
     const bool swapped = !p && (p = swapped_corner(previous, c)) != nullptr;
     if (!p) continue;
     c.carried = true;
+#pragma omp atomic write
+    carried[static_cast<std::size_t>(p - previous.data())] = 1;
     c.state = p->state;
     c.normal_force = p->normal_force;
     c.shear_force = p->shear_force;
@@ -461,6 +464,7 @@ void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Co
       c.ref_t = p->ref_t;
     }
   }
+  return carried;
 }
 
 void build_contact_topology(ContactSet& set, std::size_t nb) {

@@ -38,13 +38,16 @@ ContactEnergy contact_energy(const Contact& c) {
   return e;
 }
 
+StepEnergy released_energy(const Contact& c, bool bonded_now) {
+  StepEnergy e;
+  (c.was_bonded && !bonded_now ? e.joint_breaks : e.numerical) += c.stored_normal + c.stored_shear;
+  return e;
+}
+
 StepEnergy contact_step_energy(const Contact& c, bool bonded_now) {
+  if (c.trial == ContactState::Open) return released_energy(c, bonded_now);
   StepEnergy e;
   const bool broke = c.was_bonded && !bonded_now;
-  if (c.trial == ContactState::Open) {
-    (broke ? e.joint_breaks : e.numerical) += c.stored_normal + c.stored_shear;
-    return e;
-  }
   // Normal spring along the linearised step: ½·kn·Δd². An ordinary contact that closes from a
   // gap d0 > 0 only pushes from the moment it touches, so the spring's fictitious start energy
   // ½·kn·d0² is not the scheme's to dissipate.

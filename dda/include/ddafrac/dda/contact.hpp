@@ -126,8 +126,10 @@ std::vector<Contact> detect_contacts(const BlockSystem& blocks, const DetectionP
 /// the same vertex and block pair, or of the same vertex-vertex corner with vertex and edge
 /// swapped; new contacts start closed (locked) if they touch or are bonded joints, else open (a
 /// broken joint starts like a contact that was never bonded).
-void transfer_contact_state(const std::vector<Contact>& previous, std::vector<Contact>& current,
-                            const std::vector<Joint>& joints, const BlockSystem& blocks);
+/// Returns, per previous contact, whether some current contact carried its state (1) or it
+/// vanished (0).
+std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& previous, std::vector<Contact>& current,
+                                                 const std::vector<Joint>& joints, const BlockSystem& blocks);
 
 /// Fills pairs and per-block lists of a sorted contact list.
 void build_contact_topology(ContactSet& set, std::size_t block_count);

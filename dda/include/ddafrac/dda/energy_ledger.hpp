@@ -77,4 +77,10 @@ constexpr double kDefaultEnergyBalanceTolerance = 0.01;
 /// step and is broken now, else to numerical.
 StepEnergy contact_step_energy(const Contact& c, bool bonded_now);
 
+/// What a contact that opens, or vanishes from the contact list, gives up: the energy it stored
+/// at the end of the previous step, to joint_breaks if it was an intact virtual joint then and is
+/// broken now (a joint loaded in tension opens wider than the search distance when it breaks),
+/// else to numerical.
+StepEnergy released_energy(const Contact& c, bool bonded_now);
+
 }  // namespace ddafrac::dda
