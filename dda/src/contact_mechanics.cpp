@@ -24,6 +24,10 @@ void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem
     c.tan_phi = std::tan(js.friction_angle);
     c.cohesion = js.cohesion;
     c.tensile_strength = js.tensile_strength;
+    // Two corners meeting at a shared mesh node have no face for friction to act along (the
+    // reference line is one of four edges picked by the angle rules): the contact only keeps
+    // them from overlapping (docs/design.md, "Contacts at shared mesh nodes").
+    if (c.shared_node) c.tan_phi = 0.0;
   }
 }
 
