@@ -27,7 +27,9 @@ void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem
     // Two corners meeting at a shared mesh node have no face for friction to act along (the
     // reference line is one of four edges picked by the angle rules): the contact only keeps
     // them from overlapping (docs/design.md, "Contacts at shared mesh nodes").
-    if (c.shared_node) c.tan_phi = 0.0;
+    // Frictionless means no shear spring either: with ks > 0 and tanφ = 0 the contact would
+    // flip between locked and sliding at every open-close iteration.
+    if (c.shared_node) c.tan_phi = c.ks = 0.0;
   }
 }
 
@@ -181,7 +183,7 @@ void commit_contact(Contact& c) {
     case ContactState::Sliding: {
       // The spring keeps the elastic part at the friction limit; the rest is plastic slip, by
       // which the reference point moves along the edge.
-      const double elastic = c.slide_sign * c.tan_phi * c.fn_iter / c.ks;
+      const double elastic = c.ks > 0.0 ? c.slide_sign * c.tan_phi * c.fn_iter / c.ks : 0.0;
       c.shear_force = c.ks * elastic;
       c.slip += std::abs(c.s_iter - elastic);
       if (c.edge_length > 0.0) c.ref_t += (c.s_iter - elastic) / c.edge_length;
