@@ -1,4 +1,4 @@
-// `ddafrac study ...`: the studies of the comparison layer (DESIGN.md §7), one subcommand each.
+// `ddafrac study ...`: the studies of the comparison layer, one subcommand each.
 // `study stability` needs no deal.II and is always there; the FEM studies (mesh convergence,
 // penalty) register themselves below when the FEM part is built.
 

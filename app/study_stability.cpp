@@ -1,5 +1,5 @@
 // `ddafrac study stability [--out DIR] [--threads N] [--cases name,...]`: the stability study over
-// stiff and extreme cases (issue 6, DESIGN.md §7). Runs the cases of coupling/stability.hpp one
+// stiff and extreme cases (issue 6). Runs the cases of coupling/stability.hpp one
 // after another in this process, prints a line per case, and writes stability.csv and
 // stability.md whole. Exit status 0 when every case ends as expected (the impossible one failing
 // cleanly with its message), 1 otherwise.

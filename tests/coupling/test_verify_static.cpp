@@ -93,7 +93,7 @@ BOOST_AUTO_TEST_CASE(centre_stresses_and_field_error_converge) {
   }
 }
 
-// The comparison does not depend on the DDA's thread count (DESIGN.md §5): every block's
+// The comparison does not depend on the DDA's thread count: every block's
 // stress is the same to the last digit with 1 and 2 threads.
 BOOST_AUTO_TEST_CASE(thread_count_does_not_change_the_result) {
   const Outcome one = run(600, 1, "threads1");

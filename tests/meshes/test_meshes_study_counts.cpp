@@ -1,4 +1,4 @@
-// The block counts of the source study (DESIGN.md section 8) are hit by the sizing loop, and the
+// The block counts of the source study are hit by the sizing loop, and the
 // meshes are fit for the DDA (no sliver triangles).
 #define BOOST_TEST_MODULE test_meshes_study_counts
 #include <boost/test/unit_test.hpp>

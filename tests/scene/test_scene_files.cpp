@@ -1,5 +1,5 @@
 // Every ready scene in scenes/ parses, and the study's cases carry the study's parameters
-// (DESIGN.md §8).
+// (source study).
 #define BOOST_TEST_MODULE test_scene_files
 #include <boost/test/unit_test.hpp>
 

@@ -1,6 +1,6 @@
 #pragma once
 // Error measures of one model against a reference: fields sampled at the same points, and
-// stress histories at gauges (DESIGN.md §7). Plain arrays in, numbers out; no model types.
+// stress histories at gauges. Plain arrays in, numbers out; no model types.
 
 #include <cstddef>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// The stability study of DESIGN.md §7 (issue 6): the DDA engine on stiff and extreme cases —
+// The stability study (issue 6): the DDA engine on stiff and extreme cases —
 // contact stiffness up to kn/E = 1e4, dt_max from 1e-9 s to 1e-5 s, impacts up to 50 m/s,
 // sliver triangles, a 100× stiffer platen, static and dynamic modes — and one case that cannot
 // run at all. For each case: no NaN, energy bounded, penetration against its allowance, dt cuts

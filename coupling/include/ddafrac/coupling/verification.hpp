@@ -1,5 +1,5 @@
 #pragma once
-// What one comparison of `ddafrac verify` reports (DESIGN.md §7): numbers checked against the
+// What one comparison of `ddafrac verify` reports: numbers checked against the
 // tolerances of the scene's [verification] table, and a section of verification.md. Shared by
 // the static (Brazilian disc) and the dynamic (contact-free impact) comparisons.
 

@@ -39,7 +39,7 @@ struct PointLoad {
   double fx = 0.0, fy = 0.0;
 };
 
-/// How a virtual joint failed (DESIGN.md §4): tensile if r1 > r2, shear otherwise.
+/// How a virtual joint failed: tensile if r1 > r2, shear otherwise.
 enum class CrackType : std::uint8_t { None = 0, Tensile = 1, Shear = 2 };
 const char* to_string(CrackType t);
 

@@ -1,5 +1,5 @@
 #pragma once
-// Contact mechanics: linearised gap and shear (DESIGN.md §4), penalty springs, Mohr-Coulomb
+// Contact mechanics: linearised gap and shear, penalty springs, Mohr-Coulomb
 // sliding, and the open-close judgement.
 
 #include <vector>

@@ -40,7 +40,7 @@ struct PhaseTimes {
   double total() const { return detection + assembly + solve + judgement + fracture + update + output; }
 };
 
-/// One virtual joint breaking (DESIGN.md §4): at the end of the accepted step at time t.
+/// One virtual joint breaking: at the end of the accepted step at time t.
 struct CrackEvent {
   double t = 0.0;         // s
   double x = 0.0, y = 0.0;  // joint midpoint, m
@@ -61,7 +61,7 @@ struct JointForce {
   int contacts = 0;
 };
 
-/// Failure ratios of a joint (DESIGN.md §4): r1 = f_n/(σt·l) (tension, 0 under compression),
+/// Failure ratios of a joint: r1 = f_n/(σt·l) (tension, 0 under compression),
 /// r2 = |f_s|/(c·l + f_n,c·tanφ) with f_n,c the compressive normal force. A zero strength
 /// under a nonzero load gives +inf.
 struct FailureRatios {

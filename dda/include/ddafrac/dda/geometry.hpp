@@ -1,5 +1,5 @@
 #pragma once
-// Polygon integrals in closed form and the DDA displacement function T (DESIGN.md §4).
+// Polygon integrals in closed form and the DDA displacement function T.
 
 #include <cmath>
 #include <cstddef>

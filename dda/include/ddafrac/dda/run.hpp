@@ -1,6 +1,6 @@
 #pragma once
 // A whole run: the time loop driving an Engine to the scene's end time, writing the run
-// directory (DESIGN.md §9): summary.json, history.csv, vtk/*.vtu + run.pvd. Every file is written
+// directory: summary.json, history.csv, vtk/*.vtu + run.pvd. Every file is written
 // whole (temporary name, then rename), so an interrupted or failed run leaves valid files.
 
 #include <atomic>
@@ -36,7 +36,7 @@ struct RunOptions {
   const std::atomic<bool>* stop = nullptr;
 };
 
-/// Run directory contents besides the VTU files (DESIGN.md §9), all written whole at every
+/// Run directory contents besides the VTU files, all written whole at every
 /// output interval: summary.json, history.csv (per step; columns cracks_total, cracks_tensile,
 /// cracks_shear are cumulative, kinetic_strain_ratio = kinetic energy of the free blocks
 /// (platens excluded) over the strain energy of the blocks: the quasi-static check), cracks.csv,

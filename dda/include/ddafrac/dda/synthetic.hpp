@@ -14,7 +14,7 @@ namespace ddafrac::dda {
 meshes::Mesh make_ring_disc_mesh(double diameter, int target_blocks, double plate_width = 0.1,
                                  double plate_height = 0.02);
 
-/// The rockfall-impact parameters of DESIGN.md §8 (rock, virtual and real joints, kn = 0.35 GPa,
+/// The rockfall-impact parameters of the source study (rock, virtual and real joints, kn = 0.35 GPa,
 /// dt_max = 1e-7 s, ratio 1e-4, gravity) with the disc glued by virtual joints, moving down at v0
 /// onto the fixed plate.
 scene::Scene make_impact_scene(double v0, double end_time);

@@ -73,7 +73,7 @@ struct Output {
   std::vector<double> figure_times;  // s, crack-pattern pictures
 };
 
-/// Pass/fail tolerances of `ddafrac verify` (DESIGN.md §7), relative errors (dimensionless).
+/// Pass/fail tolerances of `ddafrac verify`, relative errors (dimensionless).
 /// A key left out is not checked; `ddafrac verify` says which keys its comparison needs.
 struct Verification {
   std::optional<double> load;            // N/m, diametral load of a static comparison
