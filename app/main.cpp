@@ -1,11 +1,40 @@
 // ddafrac: one program, one subcommand per job (mesh, run, bench, fem, ...).
 
 #include <CLI/CLI.hpp>
-#include <fmt/core.h>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
+
+namespace {
+
+std::vector<std::string> command_names(CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) names.push_back(command->get_name());
+  return names;
+}
+
+/// CLI11 answers a missing or misspelt command with only "A subcommand is required": say which
+/// word was not a command and list the commands. Returns the exit status, or 0 if all is well.
+int check_command_word(CLI::App& app, int argc, char** argv) {
+  const std::string word = argc > 1 ? argv[1] : "";
+  if (!word.empty() && word[0] == '-') return 0;  // --help, --version: CLI11's own
+  const std::vector<std::string> names = command_names(app);
+  if (std::find(names.begin(), names.end(), word) != names.end()) return 0;
+  const std::string list = fmt::format("{}", fmt::join(names, ", "));
+  if (word.empty())
+    fmt::print(stderr, "ddafrac: a command is required; the commands are: {} (ddafrac --help)\n", list);
+  else
+    fmt::print(stderr, "ddafrac: unknown command \"{}\"; the commands are: {} (ddafrac --help)\n", word, list);
+  return static_cast<int>(CLI::ExitCodes::RequiredError);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"ddafrac: 2D DDA with virtual joints for rock fracture, verified against deal.II FEM"};
@@ -22,6 +51,7 @@ int main(int argc, char** argv) {
   ddafrac::app::register_verify_command(app);
 #endif
 
+  if (const int status = check_command_word(app, argc, argv)) return status;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

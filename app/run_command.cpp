@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "option_checks.hpp"
 #include "figures.hpp"
 #include "ddafrac/dda/run.hpp"
 #include "ddafrac/scene/parse.hpp"
@@ -167,14 +168,15 @@ void register_run_command(CLI::App& app) {
   args->scene.add_to(*command);
   command->add_option("--out", args->out, "run directory (default runs/<scene name>/run)");
   command->add_option("--threads", args->threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1, kMaxThreads));
   command->add_option("--solver", args->solver, "linear solver: pcg (block-Jacobi PCG) or direct (sparse LDLT); default: the scene's analysis.solver")
       ->check(CLI::IsMember({"pcg", "direct"}));
-  command->add_option("--max-steps", args->max_steps, "stop after this many steps (0: run to the end time)");
+  command->add_option("--max-steps", args->max_steps, "stop after this many steps (0: run to the end time)")
+      ->check(whole_number(0));
   command->add_flag("--no-vtk", args->no_vtk, "skip the VTU snapshots");
   command->add_option("--energy-tolerance", args->energy_tolerance,
                       "warn at the end when the energy balance error ever exceeded this fraction (default 0.01)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   command->add_flag("--no-figures", args->no_figures, "skip the PNG figures (also skipped when scene.output.figures is false)");
   command->callback([args] { run_run(*args); });
 }

@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "commands.hpp"
+#include "option_checks.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/scene/parse.hpp"
 #include "ddafrac/scene/sweep.hpp"
@@ -211,7 +212,7 @@ void register_sweep_command(CLI::App& app) {
   command->add_option("sweep", args->sweep_file, "sweep file (TOML), e.g. scenes/impact/cases.sweep.toml")->required();
   command->add_option("--out", args->out, "output directory (default runs/<sweep name>)");
   command->add_option("--parallel", args->parallel, "runs at once (default: cores / threads per run)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1, kMaxParallelRuns));
   command->add_option("--set", args->overrides, "override a value of every case, e.g. --set mesh.blocks=1200")
       ->type_name("KEY=VALUE");
   command->callback([args] { run_sweep(*args); });

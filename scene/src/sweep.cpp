@@ -8,12 +8,6 @@
 
 namespace ddafrac::scene {
 
-namespace {
-/// More simultaneous runs than this is taken for a typo.
-constexpr long long kMaxParallelRuns = 256;
-constexpr long long kMaxThreadsPerRun = 1024;
-}  // namespace
-
 Sweep load_sweep(const std::filesystem::path& path) {
   using detail::Need;
   detail::Diagnostics diagnostics(path.string());
