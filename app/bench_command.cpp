@@ -12,6 +12,7 @@
 
 #include "commands.hpp"
 #include "option_checks.hpp"
+#include "scene_source.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/dda/run.hpp"
 #include "ddafrac/dda/synthetic.hpp"
@@ -75,6 +76,7 @@ BenchRow bench_one(int target, int threads, const BenchArguments& a) {
 }
 
 void run_bench(const BenchArguments& a) {
+  check_memory_for_blocks(*std::max_element(a.blocks.begin(), a.blocks.end()), "--blocks");
   const std::filesystem::path out = a.out;
   std::filesystem::create_directories(out);
   std::vector<BenchRow> rows;

@@ -23,25 +23,52 @@ namespace ddafrac::app {
 
 namespace {
 
-/// Set by the SIGINT handler while a run is in progress; the run stops at the next step.
-std::atomic<bool> stop_requested{false};
+/// The signal (SIGINT or SIGTERM) received while a run is in progress, 0 while none; the run
+/// stops at the next step, writes valid files and exits with 128 + the signal.
+std::atomic<int> stop_signal{0};
 
-extern "C" void on_sigint(int) { stop_requested.store(true); }
+extern "C" void on_stop_signal(int signal) { stop_signal.store(signal); }
 
-/// Installs the SIGINT handler for the lifetime of a run and restores the previous one after.
-class SigintGuard {
+/// Installs the SIGINT and SIGTERM handlers for the lifetime of a run and restores the previous
+/// ones after.
+class StopSignalGuard {
  public:
-  SigintGuard() {
-    stop_requested.store(false);
-    previous_ = std::signal(SIGINT, on_sigint);
+  StopSignalGuard() {
+    stop_signal.store(0);
+    previous_interrupt_ = std::signal(SIGINT, on_stop_signal);
+    previous_terminate_ = std::signal(SIGTERM, on_stop_signal);
   }
-  ~SigintGuard() { std::signal(SIGINT, previous_); }
-  SigintGuard(const SigintGuard&) = delete;
-  SigintGuard& operator=(const SigintGuard&) = delete;
+  ~StopSignalGuard() {
+    std::signal(SIGINT, previous_interrupt_);
+    std::signal(SIGTERM, previous_terminate_);
+  }
+  StopSignalGuard(const StopSignalGuard&) = delete;
+  StopSignalGuard& operator=(const StopSignalGuard&) = delete;
 
  private:
-  void (*previous_)(int) = SIG_DFL;
+  void (*previous_interrupt_)(int) = SIG_DFL;
+  void (*previous_terminate_)(int) = SIG_DFL;
 };
+
+/// Generated meshes of more blocks than this take long enough to say so first.
+constexpr int kQuietMeshBlocks = 100'000;
+
+/// Refuses a model too large for the memory, and announces a long meshing.
+void check_model_size(const scene::Scene& scene) {
+  if (std::holds_alternative<meshes::MshFile>(scene.geometry)) return;
+  check_memory_for_blocks(scene.mesh.target_blocks, scene.source.string() + ": mesh.blocks");
+  if (scene.mesh.target_blocks > kQuietMeshBlocks) {
+    fmt::print("meshing {} blocks (this takes a while) ...\n", scene.mesh.target_blocks);
+    std::fflush(stdout);
+  }
+}
+
+/// Clears the run directory of a previous run's files (ours only), so no stale snapshot or
+/// figure sits beside the new run's.
+void clear_previous_run(const std::filesystem::path& out) {
+  const std::size_t removed = dda::remove_previous_run(out) + remove_previous_figures(out);
+  if (removed > 0) fmt::print("removed {} file(s) of a previous run from {}\n", removed, out.string());
+}
 
 struct RunArguments {
   SceneArguments scene;
@@ -85,6 +112,7 @@ void run_run(const RunArguments& args) {
   const int threads = omp_get_max_threads();
 
   const auto setup_start = std::chrono::steady_clock::now();
+  check_model_size(scene);
   const meshes::Mesh mesh = dda_mesh(scene);
   dda::EngineOptions options;
   const bool direct = args.solver.empty() ? scene.analysis.solver == scene::Solver::Direct : args.solver == "direct";
@@ -109,10 +137,11 @@ void run_run(const RunArguments& args) {
   ro.vtk = scene.output.vtk && !args.no_vtk;
   ro.progress_every = tty ? 0.2 : 5.0;
   ro.progress = [tty](const dda::Progress& p) { show_progress(p, tty); };
+  clear_previous_run(out);
   dda::RunResult result;
   {
-    SigintGuard guard;
-    ro.stop = &stop_requested;
+    StopSignalGuard guard;
+    ro.stop = &stop_signal;
     result = dda::run_simulation(*engine, ro);
   }
   if (tty) fmt::print(stderr, "\n");
@@ -155,7 +184,7 @@ void run_run(const RunArguments& args) {
     fig.push_back(fmt::format("{:.9g}", scene.output.crack_interval));
     if (draw_figures(fig)) fmt::print("figures in {}/figures/\n", out.string());
   }
-  if (result.exit_status == dda::kRunInterrupted)
+  if (result.reason == "interrupted")
     throw CommandFailed(result.message + "; the files written so far are valid", result.exit_status);
   if (result.exit_status != dda::kRunCompleted) throw CommandFailed(result.message, result.exit_status);
 }
