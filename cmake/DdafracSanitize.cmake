@@ -9,4 +9,9 @@ if(DDAFRAC_SANITIZE)
   set(DDAFRAC_SANITIZE_FLAGS -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
   add_compile_options(${DDAFRAC_SANITIZE_FLAGS})
   add_link_options(-fsanitize=address,undefined)
+  # The tests run with leaks inside gmsh suppressed (ours are still reported) and stop at the
+  # first UB report.
+  set(DDAFRAC_TEST_ENVIRONMENT
+      "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_LIST_DIR}/lsan_suppressions.txt"
+      "UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
 endif()
