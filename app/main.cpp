@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,9 @@ int main(int argc, char** argv) {
   } catch (const ddafrac::app::CommandFailed& e) {
     fmt::print(stderr, "ddafrac: {}\n", e.what());
     return e.exit_code();
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "ddafrac: out of memory: the model needs more memory than this machine has available\n");
+    return 1;
   } catch (const std::exception& e) {
     fmt::print(stderr, "ddafrac: error: {}\n", e.what());
     return 1;
