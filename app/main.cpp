@@ -20,19 +20,28 @@ std::vector<std::string> command_names(CLI::App& app) {
   return names;
 }
 
-/// CLI11 answers a missing or misspelt command with only "A subcommand is required": say which
-/// word was not a command and list the commands. Returns the exit status, or 0 if all is well.
-int check_command_word(CLI::App& app, int argc, char** argv) {
-  const std::string word = argc > 1 ? argv[1] : "";
-  if (!word.empty() && word[0] == '-') return 0;  // --help, --version: CLI11's own
-  const std::vector<std::string> names = command_names(app);
-  if (std::find(names.begin(), names.end(), word) != names.end()) return 0;
-  const std::string list = fmt::format("{}", fmt::join(names, ", "));
-  if (word.empty())
-    fmt::print(stderr, "ddafrac: a command is required; the commands are: {} (ddafrac --help)\n", list);
-  else
-    fmt::print(stderr, "ddafrac: unknown command \"{}\"; the commands are: {} (ddafrac --help)\n", word, list);
-  return static_cast<int>(CLI::ExitCodes::RequiredError);
+/// CLI11 answers a missing or misspelt command (or a study's) with only "A subcommand is
+/// required": say which word was not a command and list the commands. Returns the exit status,
+/// or 0 if all is well.
+int check_command_words(CLI::App& app, int argc, char** argv) {
+  CLI::App* level = &app;
+  std::string path = "ddafrac";
+  for (int i = 1;; ++i) {
+    const std::vector<std::string> names = command_names(*level);
+    const std::string word = i < argc ? argv[i] : "";
+    if (names.empty() || (!word.empty() && word[0] == '-')) return 0;  // options, --help: CLI11's own
+    if (std::find(names.begin(), names.end(), word) != names.end()) {
+      level = level->get_subcommand(word);
+      path += " " + word;
+      continue;
+    }
+    const std::string list = fmt::format("{}", fmt::join(names, ", "));
+    if (word.empty())
+      fmt::print(stderr, "{}: a command is required; the commands are: {} ({} --help)\n", path, list, path);
+    else
+      fmt::print(stderr, "{}: unknown command \"{}\"; the commands are: {} ({} --help)\n", path, word, list, path);
+    return static_cast<int>(CLI::ExitCodes::RequiredError);
+  }
 }
 
 }  // namespace
@@ -52,7 +61,7 @@ int main(int argc, char** argv) {
   ddafrac::app::register_verify_command(app);
 #endif
 
-  if (const int status = check_command_word(app, argc, argv)) return status;
+  if (const int status = check_command_words(app, argc, argv)) return status;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
