@@ -444,3 +444,14 @@ BOOST_AUTO_TEST_CASE(a_bad_set_value_is_blamed_on_the_option_without_a_line) {
     BOOST_TEST(p[1].message.find("did you mean \"output\"") != std::string::npos);
   }
 }
+
+BOOST_AUTO_TEST_CASE(a_scene_file_of_two_megabytes_is_refused_unread) {
+  const auto path = write_temp("huge.toml", kValid + "#" + std::string(2u << 20, 'x') + "\n");
+  try {
+    scene::load_scene(path);
+    BOOST_FAIL("accepted");
+  } catch (const scene::SceneError& e) {
+    BOOST_TEST_REQUIRE(e.problems().size() == 1u);
+    BOOST_TEST(e.problems()[0].message.find("too long for a scene (at most 1048576 bytes)") != std::string::npos);
+  }
+}
