@@ -124,8 +124,12 @@ toml::table load_chain(const std::string& text, const std::filesystem::path& fil
     return std::move(*document);
   }
   const std::filesystem::path base_path = file.parent_path() / base_name->get();
+  // Only a regular file of scene size: a device such as /dev/zero would be read for ever.
+  std::error_code error;
+  const bool scene_sized = std::filesystem::is_regular_file(base_path, error) &&
+                           std::filesystem::file_size(base_path, error) <= kMaxSceneBytes && !error;
   std::ifstream in(base_path);
-  if (!in) {
+  if (!scene_sized || !in) {
     diagnostics.report(base_node->source(), std::string(kBaseKey),
                        fmt::format("cannot read the base scene \"{}\"", base_path.string()));
     return std::move(*document);
