@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "option_checks.hpp"
+#include "scene_source.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/dda/run.hpp"
 #include "ddafrac/dda/synthetic.hpp"
@@ -19,6 +21,12 @@
 namespace ddafrac::app {
 
 namespace {
+
+/// The smallest ring disc dda::make_ring_disc_mesh makes: its centre hexagon, six triangles
+/// (a smaller target would silently bench those six).
+constexpr long long kSmallestRingDisc = 6;
+/// Beyond this the engine's memory, not its speed, is what a bench would measure.
+constexpr long long kMaxBenchBlocks = 1'000'000;
 
 struct BenchArguments {
   std::vector<int> blocks{1000, 2000, 4000, 8000, 16000};
@@ -68,6 +76,7 @@ BenchRow bench_one(int target, int threads, const BenchArguments& a) {
 }
 
 void run_bench(const BenchArguments& a) {
+  check_memory_for_blocks(*std::max_element(a.blocks.begin(), a.blocks.end()), "--blocks");
   const std::filesystem::path out = a.out;
   std::filesystem::create_directories(out);
   std::vector<BenchRow> rows;
@@ -127,10 +136,12 @@ void register_bench_command(CLI::App& app) {
   auto args = std::make_shared<BenchArguments>();
   CLI::App* command =
       app.add_subcommand("bench", "benchmark the DDA engine: glued disc impacting a plate, µs per block-step per phase");
-  command->add_option("--blocks", args->blocks, "block counts (default 1000 2000 4000 8000 16000)")->delimiter(',');
-  command->add_option("--threads", args->threads, "thread counts (default 1 2)")->delimiter(',');
-  command->add_option("--steps", args->steps, "timed steps per case")->check(CLI::PositiveNumber);
-  command->add_option("--warmup", args->warmup, "untimed steps first");
+  command->add_option("--blocks", args->blocks, "block counts (default 1000 2000 4000 8000 16000)")
+      ->delimiter(',')
+      ->check(whole_number(kSmallestRingDisc, kMaxBenchBlocks));
+  command->add_option("--threads", args->threads, "thread counts (default 1 2)")->delimiter(',')->check(whole_number(1, kMaxThreads));
+  command->add_option("--steps", args->steps, "timed steps per case")->check(whole_number(1));
+  command->add_option("--warmup", args->warmup, "untimed steps first")->check(whole_number(0));
   command->add_option("--solver", args->solver, "pcg or direct")->check(CLI::IsMember({"pcg", "direct"}));
   command->add_option("--out", args->out, "directory for bench.json and bench.csv");
   command->add_flag("!--no-ceiling", args->ceiling,

@@ -1,5 +1,7 @@
 #include "figures.hpp"
 
+#include "ddafrac/common/whole_file.hpp"
+
 #include <fmt/core.h>
 
 #include <cstdlib>
@@ -14,6 +16,12 @@ namespace {
 /// as a pyenv one, may lack it). DDAFRAC_PYTHON overrides it.
 constexpr const char* kDefaultPython = "/usr/bin/python3";
 }  // namespace
+
+std::size_t remove_previous_figures(const std::filesystem::path& run_dir) {
+  // The names plots/ddafrac_plots.py gives them; it saves each as ".<name>.partial.png" first.
+  static const std::regex kRunFigure(R"(\.?(energy|crack_counts|gauges_sigma1|crack_pattern_\d+us)\.png(\.partial\.png)?)");
+  return common::remove_files_matching(run_dir / "figures", kRunFigure);
+}
 
 bool draw_figures(const std::vector<std::string>& arguments) {
   const char* override_python = std::getenv("DDAFRAC_PYTHON");

@@ -10,9 +10,12 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cmath>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
+#include "option_checks.hpp"
 #include "figures.hpp"
 #include "ddafrac/dda/run.hpp"
 #include "ddafrac/scene/parse.hpp"
@@ -22,25 +25,80 @@ namespace ddafrac::app {
 
 namespace {
 
-/// Set by the SIGINT handler while a run is in progress; the run stops at the next step.
-std::atomic<bool> stop_requested{false};
+/// The signal (SIGINT or SIGTERM) received while a run is in progress, 0 while none; the run
+/// stops at the next step, writes valid files and exits with 128 + the signal.
+std::atomic<int> stop_signal{0};
 
-extern "C" void on_sigint(int) { stop_requested.store(true); }
+extern "C" void on_stop_signal(int signal) { stop_signal.store(signal); }
 
-/// Installs the SIGINT handler for the lifetime of a run and restores the previous one after.
-class SigintGuard {
+/// Installs the SIGINT and SIGTERM handlers for the lifetime of a run and restores the previous
+/// ones after.
+class StopSignalGuard {
  public:
-  SigintGuard() {
-    stop_requested.store(false);
-    previous_ = std::signal(SIGINT, on_sigint);
+  StopSignalGuard() {
+    stop_signal.store(0);
+    previous_interrupt_ = std::signal(SIGINT, on_stop_signal);
+    previous_terminate_ = std::signal(SIGTERM, on_stop_signal);
   }
-  ~SigintGuard() { std::signal(SIGINT, previous_); }
-  SigintGuard(const SigintGuard&) = delete;
-  SigintGuard& operator=(const SigintGuard&) = delete;
+  ~StopSignalGuard() {
+    std::signal(SIGINT, previous_interrupt_);
+    std::signal(SIGTERM, previous_terminate_);
+  }
+  StopSignalGuard(const StopSignalGuard&) = delete;
+  StopSignalGuard& operator=(const StopSignalGuard&) = delete;
 
  private:
-  void (*previous_)(int) = SIG_DFL;
+  void (*previous_interrupt_)(int) = SIG_DFL;
+  void (*previous_terminate_)(int) = SIG_DFL;
 };
+
+/// Generated meshes of more blocks than this take long enough to say so first.
+constexpr int kQuietMeshBlocks = 100'000;
+
+/// Refuses a model too large for the memory, and announces a long meshing.
+void check_model_size(const scene::Scene& scene) {
+  if (std::holds_alternative<meshes::MshFile>(scene.geometry)) return;
+  check_memory_for_blocks(scene.mesh.target_blocks, scene.source.string() + ": mesh.blocks");
+  if (scene.mesh.target_blocks > kQuietMeshBlocks) {
+    fmt::print("meshing {} blocks (this takes a while) ...\n", scene.mesh.target_blocks);
+    std::fflush(stdout);
+  }
+}
+
+/// Bytes of one VTU snapshot per block: 151 measured at t = 0 (impact_small), broken joints add lines.
+constexpr double kVtuBytesPerBlock = 200.0;
+constexpr double kBytesPerMegabyte = 1e6;
+
+/// The free space of the file system `path` will be on (its nearest existing ancestor).
+std::optional<double> free_space_for(std::filesystem::path path) {
+  path = std::filesystem::absolute(path);
+  std::error_code error;
+  while (!std::filesystem::exists(path, error) && path.has_parent_path() && path != path.parent_path())
+    path = path.parent_path();
+  const std::filesystem::space_info space = std::filesystem::space(path, error);
+  if (error) return std::nullopt;
+  return static_cast<double>(space.available);
+}
+
+/// Refuses a run whose VTU snapshots would not fit on the disk, saying what they would take.
+void check_disk_for_snapshots(const scene::Scene& scene, std::size_t blocks, const std::filesystem::path& out) {
+  const double snapshots = std::floor(scene.analysis.end_time / scene.analysis.output_interval) + 2.0;
+  const double snapshot_bytes = static_cast<double>(blocks) * kVtuBytesPerBlock;
+  const std::optional<double> available = free_space_for(out);
+  if (!available || snapshots * snapshot_bytes <= *available) return;
+  throw CommandFailed(fmt::format(
+      "{}: the run would write {:g} VTU snapshots of about {:.1f} MB ({:.0f} MB in all: analysis.output_interval = "
+      "{:g} s) but {} has {:.0f} MB free; use a longer output_interval or --no-vtk",
+      scene.source.string(), snapshots, snapshot_bytes / kBytesPerMegabyte, snapshots * snapshot_bytes / kBytesPerMegabyte,
+      scene.analysis.output_interval, out.string(), *available / kBytesPerMegabyte));
+}
+
+/// Clears the run directory of a previous run's files (ours only), so no stale snapshot or
+/// figure sits beside the new run's.
+void clear_previous_run(const std::filesystem::path& out) {
+  const std::size_t removed = dda::remove_previous_run(out) + remove_previous_figures(out);
+  if (removed > 0) fmt::print("removed {} file(s) of a previous run from {}\n", removed, out.string());
+}
 
 struct RunArguments {
   SceneArguments scene;
@@ -84,6 +142,7 @@ void run_run(const RunArguments& args) {
   const int threads = omp_get_max_threads();
 
   const auto setup_start = std::chrono::steady_clock::now();
+  check_model_size(scene);
   const meshes::Mesh mesh = dda_mesh(scene);
   dda::EngineOptions options;
   const bool direct = args.solver.empty() ? scene.analysis.solver == scene::Solver::Direct : args.solver == "direct";
@@ -102,16 +161,18 @@ void run_run(const RunArguments& args) {
   const bool tty = ::isatty(::fileno(stderr)) != 0;
   dda::RunOptions ro;
   ro.out_dir = out;
+  ro.vtk = scene.output.vtk && !args.no_vtk;
+  if (ro.vtk) check_disk_for_snapshots(scene, engine->blocks().block_count(), out);
   ro.threads = threads;
   ro.setup_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
   ro.max_steps = args.max_steps;
-  ro.vtk = scene.output.vtk && !args.no_vtk;
   ro.progress_every = tty ? 0.2 : 5.0;
   ro.progress = [tty](const dda::Progress& p) { show_progress(p, tty); };
+  clear_previous_run(out);
   dda::RunResult result;
   {
-    SigintGuard guard;
-    ro.stop = &stop_requested;
+    StopSignalGuard guard;
+    ro.stop = &stop_signal;
     result = dda::run_simulation(*engine, ro);
   }
   if (tty) fmt::print(stderr, "\n");
@@ -154,7 +215,7 @@ void run_run(const RunArguments& args) {
     fig.push_back(fmt::format("{:.9g}", scene.output.crack_interval));
     if (draw_figures(fig)) fmt::print("figures in {}/figures/\n", out.string());
   }
-  if (result.exit_status == dda::kRunInterrupted)
+  if (result.reason == "interrupted")
     throw CommandFailed(result.message + "; the files written so far are valid", result.exit_status);
   if (result.exit_status != dda::kRunCompleted) throw CommandFailed(result.message, result.exit_status);
 }
@@ -167,14 +228,15 @@ void register_run_command(CLI::App& app) {
   args->scene.add_to(*command);
   command->add_option("--out", args->out, "run directory (default runs/<scene name>/run)");
   command->add_option("--threads", args->threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1, kMaxThreads));
   command->add_option("--solver", args->solver, "linear solver: pcg (block-Jacobi PCG) or direct (sparse LDLT); default: the scene's analysis.solver")
       ->check(CLI::IsMember({"pcg", "direct"}));
-  command->add_option("--max-steps", args->max_steps, "stop after this many steps (0: run to the end time)");
+  command->add_option("--max-steps", args->max_steps, "stop after this many steps (0: run to the end time)")
+      ->check(whole_number(0));
   command->add_flag("--no-vtk", args->no_vtk, "skip the VTU snapshots");
   command->add_option("--energy-tolerance", args->energy_tolerance,
                       "warn at the end when the energy balance error ever exceeded this fraction (default 0.01)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   command->add_flag("--no-figures", args->no_figures, "skip the PNG figures (also skipped when scene.output.figures is false)");
   command->callback([args] { run_run(*args); });
 }

@@ -31,6 +31,10 @@ struct SceneArguments {
 /// scene's bodies. Problems become a CommandFailed naming the scene file.
 meshes::Mesh dda_mesh(const scene::Scene& scene, meshes::QualityReport* quality = nullptr);
 
+/// Refuses (CommandFailed) a model of `blocks` blocks that would need more memory than the
+/// machine has available, with the estimate; says nothing where /proc/meminfo is not readable.
+void check_memory_for_blocks(double blocks, const std::string& what);
+
 /// The scene used when none is named: scenes/default.toml of the source tree.
 std::filesystem::path default_scene_path();
 

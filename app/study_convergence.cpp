@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "option_checks.hpp"
 #include "fem_session.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/verify.hpp"
@@ -190,7 +191,7 @@ void register_study_convergence(CLI::App& study) {
   args->scene.add_to(*command);
   command->add_option("--blocks", args->blocks, "DDA block counts, e.g. 500,1000,2000,4000")->delimiter(',')->capture_default_str();
   command->add_option("--out", args->out, "output directory (default runs/<scene name>/convergence)");
-  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")->check(CLI::PositiveNumber)->capture_default_str();
+  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")->check(whole_number(1, kMaxThreads))->capture_default_str();
   command->add_option("--degree", args->degree, "FEM polynomial degree (1 or 2)")->check(CLI::Range(1, 2))->capture_default_str();
   command->add_option("--fem-refine", args->fem_refine, "uniform refinements of the FEM reference: one value, or one per level (e.g. 0,0,1,1,2)")
       ->delimiter(',')->check(CLI::Range(0, 5))->capture_default_str();

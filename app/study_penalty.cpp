@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "option_checks.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/verify_dynamic.hpp"
 #include "ddafrac/dda/engine.hpp"
@@ -172,7 +173,7 @@ void register_study_penalty(CLI::App& study) {
       ->capture_default_str();
   command->add_option("--dts", args->dts, "DDA time steps dt_max in s (comma-separated)")->delimiter(',')->capture_default_str();
   command->add_option("--end-time", args->end_time, "simulated time in s (default: the scene's)");
-  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")->check(CLI::PositiveNumber)->capture_default_str();
+  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")->check(whole_number(1, kMaxThreads))->capture_default_str();
   command->add_option("--fem-degree", args->fem_degree, "FEM polynomial degree")->check(CLI::Range(1, 2))->capture_default_str();
   command->add_option("--fem-refine", args->fem_refine, "uniform refinements of the FEM mesh")->check(CLI::Range(0, 4))->capture_default_str();
   command->add_flag("--no-figures", args->no_figures, "do not draw penalty_study.png");

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "option_checks.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/stability.hpp"
 
@@ -91,7 +92,7 @@ void register_study_stability(CLI::App& study) {
   CLI::App* command = study.add_subcommand("stability", "run the stiff and extreme cases and tabulate their stability");
   command->add_option("--out", args->out, "output directory for stability.csv and stability.md")->capture_default_str();
   command->add_option("--threads", args->threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1, kMaxThreads));
   command->add_option("--cases", args->cases, "run only these cases (comma-separated names)")->delimiter(',');
   command->callback([args] { run_study_stability(*args); });
 }

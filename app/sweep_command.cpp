@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
@@ -16,6 +17,7 @@
 #include <thread>
 
 #include "commands.hpp"
+#include "option_checks.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/scene/parse.hpp"
 #include "ddafrac/scene/sweep.hpp"
@@ -84,6 +86,27 @@ std::optional<std::array<double, 3>> cracks_at(const fs::path& history, double t
   return found;
 }
 
+/// Each case runs in the folder of its scene name: two cases of one name would overwrite each
+/// other's run, so they are refused before anything runs.
+void refuse_shared_names(const std::vector<Case>& cases) {
+  std::map<std::string, std::vector<std::string>> files_of;
+  for (const Case& c : cases) files_of[c.scene.name].push_back(c.scene_file.string());
+  std::string problems;
+  for (const auto& [name, files] : files_of)
+    if (files.size() > 1) problems += fmt::format("\n  \"{}\": {}", name, fmt::join(files, ", "));
+  if (!problems.empty())
+    throw CommandFailed("cases share a scene name, so their runs would overwrite each other (nothing was run; give "
+                        "each a name = \"...\"):" + problems);
+}
+
+/// A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + '"';
+}
+
 std::vector<Case> load_cases(const scene::Sweep& sweep, const std::vector<std::string>& overrides, const fs::path& out) {
   std::vector<Case> cases;
   std::string problems;
@@ -99,6 +122,7 @@ std::vector<Case> load_cases(const scene::Sweep& sweep, const std::vector<std::s
     }
   }
   if (!problems.empty()) throw CommandFailed("the sweep's cases have problems (nothing was run):" + problems);
+  refuse_shared_names(cases);
   return cases;
 }
 
@@ -147,8 +171,9 @@ std::string table_csv(const std::vector<Case>& cases, const fs::path& out) {
   for (const Case& c : cases) {
     const std::string cracks =
         c.cracks ? fmt::format("{:g},{:g},{:g}", (*c.cracks)[0], (*c.cracks)[1], (*c.cracks)[2]) : ",,";
-    csv += fmt::format("{},{},{},{},{:.3f},{},{}\n", c.scene.name, c.scene_file.string(), impact_columns(c.scene), cracks,
-                       c.wall_seconds, c.exit_code, fs::relative(c.run_dir, out).string());
+    csv += fmt::format("{},{},{},{},{:.3f},{},{}\n", c.scene.name, csv_field(c.scene_file.string()),
+                       impact_columns(c.scene), cracks, c.wall_seconds, c.exit_code,
+                       csv_field(fs::relative(c.run_dir, out).string()));
   }
   return csv;
 }
@@ -211,7 +236,7 @@ void register_sweep_command(CLI::App& app) {
   command->add_option("sweep", args->sweep_file, "sweep file (TOML), e.g. scenes/impact/cases.sweep.toml")->required();
   command->add_option("--out", args->out, "output directory (default runs/<sweep name>)");
   command->add_option("--parallel", args->parallel, "runs at once (default: cores / threads per run)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1, kMaxParallelRuns));
   command->add_option("--set", args->overrides, "override a value of every case, e.g. --set mesh.blocks=1200")
       ->type_name("KEY=VALUE");
   command->callback([args] { run_sweep(*args); });

@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "option_checks.hpp"
 #include "fem_session.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/verify.hpp"
@@ -135,7 +136,7 @@ void register_verify_command(CLI::App& app) {
       "verify", "DDA (bonded, unbreakable joints) vs FEM (and analytic) on the scene; PASS/FAIL against its [verification] tolerances");
   args->scene.add_to(*command);
   command->add_option("--out", args->out, "output directory (default runs/<scene name>/verify)");
-  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")->check(CLI::PositiveNumber)->capture_default_str();
+  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")->check(whole_number(1, kMaxThreads))->capture_default_str();
   command->add_option("--degree", args->degree, "FEM polynomial degree (1 or 2)")->check(CLI::Range(1, 2))->capture_default_str();
   command->add_option("--refine", args->refine, "uniform refinements of the FEM mesh (element size D/25)")->check(CLI::Range(0, 5))->capture_default_str();
   command->add_option("--stiffness-ratio", args->stiffness_ratio, "DDA joint stiffness kn as a multiple of E (ks = 0.4 kn); <= 0 keeps the scene's")->capture_default_str();

@@ -6,10 +6,26 @@
 
 namespace ddafrac::common {
 
-void write_whole_file(const std::filesystem::path& target,
-                      const std::function<void(const std::filesystem::path&)>& write) {
+std::filesystem::path partial_name(const std::filesystem::path& target) {
   std::filesystem::path temporary = target;
   temporary.replace_filename("." + target.stem().string() + ".partial" + target.extension().string());
+  return temporary;
+}
+
+std::size_t remove_files_matching(const std::filesystem::path& folder, const std::regex& pattern) {
+  std::error_code error;
+  if (!std::filesystem::is_directory(folder, error)) return 0;
+  std::size_t removed = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+    if (!entry.is_regular_file(error) || !std::regex_match(entry.path().filename().string(), pattern)) continue;
+    if (std::filesystem::remove(entry.path(), error)) ++removed;
+  }
+  return removed;
+}
+
+void write_whole_file(const std::filesystem::path& target,
+                      const std::function<void(const std::filesystem::path&)>& write) {
+  const std::filesystem::path temporary = partial_name(target);
   try {
     write(temporary);
     std::filesystem::rename(temporary, target);

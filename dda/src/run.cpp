@@ -8,6 +8,7 @@
 #include <cmath>
 #include <algorithm>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 
@@ -61,6 +62,22 @@ std::string crack_intervals_document(const std::vector<CrackEvent>& cracks, doub
     s += fmt::format("{:.9g},{:.9g},{},{},{}\n", static_cast<double>(k) * width, static_cast<double>(k + 1) * width,
                      n[k].total, n[k].tensile, n[k].shear);
   return s;
+}
+
+/// The run directory's files besides the snapshots (vtk/snapshot_NNNNNN.vtu).
+const char* const kRunFiles[] = {"summary.json", "history.csv",  "cracks.csv", "crack_intervals.csv",
+                                 "gauges.csv",   "loading.csv", "run.pvd"};
+
+/// NaN or infinity in a step's energies means NaN or infinity in the blocks' state.
+void check_finite(const StepReport& r) {
+  const double values[] = {r.energy.kinetic, r.energy.strain,  r.energy.contact,
+                           r.energy.support, r.max_penetration, r.ledger.balance_error()};
+  if (std::all_of(std::begin(values), std::end(values), [](double v) { return std::isfinite(v); })) return;
+  throw NumericalTrouble(fmt::format(
+      "numerical trouble at step {}, t = {:.9g} s: the energies are not finite (kinetic {:g}, strain {:g}, contact "
+      "{:g} J/m), so NaN or infinity is in the blocks' state; a stiffness out of scale (materials.*.young, "
+      "analysis.penalty, joints.*.normal_stiffness) or a velocity out of scale does this",
+      r.step, r.time, r.energy.kinetic, r.energy.strain, r.energy.contact));
 }
 
 struct Snapshot {
@@ -213,6 +230,17 @@ std::string vtu_document(const Engine& e) {
   return s;
 }
 
+std::size_t remove_previous_run(const fs::path& dir) {
+  std::string names;
+  for (const char* file : kRunFiles) {
+    const fs::path name(file);
+    for (const fs::path& any : {name, common::partial_name(name)})
+      names += (names.empty() ? "" : "|") + std::regex_replace(any.string(), std::regex(R"(\.)"), R"(\.)");
+  }
+  return common::remove_files_matching(dir, std::regex(names)) +
+         common::remove_files_matching(dir / "vtk", std::regex(R"(\.?snapshot_\d{6}(\.partial)?\.vtu)"));
+}
+
 RunResult run_simulation(Engine& engine, const RunOptions& o) {
   const double t0 = omp_get_wtime();
   RunResult r;
@@ -257,9 +285,9 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
     }
   };
 
-  auto write_outputs = [&](bool snapshot) {
+  auto write_outputs = [&](bool snapshot, bool state_valid = true) {
     const double w0 = omp_get_wtime();
-    sample_gauges();
+    if (state_valid) sample_gauges();
     if (!sc.gauges.empty()) ddafrac::common::write_whole_text(o.out_dir / "gauges.csv", gauges);
     if (loaded) ddafrac::common::write_whole_text(o.out_dir / "loading.csv", loading);
     ddafrac::common::write_whole_text(o.out_dir / "cracks.csv", cracks_document(engine.cracks()));
@@ -276,7 +304,7 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
     r.wall = omp_get_wtime() - t0;
     r.steps = st.steps;
     r.time = engine.time();
-    ddafrac::common::write_whole_text(o.out_dir / "summary.json", summary_json(engine, o, r, {{"peak", peaks}, {"unit", "N/m"}}).dump(2) + "\n");
+    ddafrac::common::write_whole_text(o.out_dir / "summary.json", summary_json(engine, o, r, {{"peak", peaks}, {"unit", "N/m"}}).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   };
 
   r.reason = "running";
@@ -288,10 +316,10 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
   StepReport last;
   try {
     for (;;) {
-      if (o.stop && o.stop->load()) {
-        r.exit_status = kRunInterrupted;
+      if (const int signal = o.stop ? o.stop->load() : 0) {
+        r.exit_status = kSignalExitBase + signal;
         r.reason = "interrupted";
-        r.message = fmt::format("interrupted at step {}, t = {:.9g} s", st.steps, engine.time());
+        r.message = fmt::format("interrupted by signal {} at step {}, t = {:.9g} s", signal, st.steps, engine.time());
         break;
       }
       if (o.max_steps > 0 && st.steps >= o.max_steps) {
@@ -304,6 +332,7 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
       }
       const double t_out = std::min(end, static_cast<double>(next_output) * interval);
       const StepReport rep = engine.step(t_out - engine.time());
+      check_finite(rep);
       last = rep;
       sample_loading();
       if (rep.step % std::max(1, o.history_every) == 0) history += history_row(rep);
@@ -328,7 +357,9 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
   }
   if (o.progress)
     o.progress({engine.time(), end, st.steps, last.dt, last.open_close, last.cg_iterations, omp_get_wtime() - t0});
-  write_outputs(snapshot_at_end);
+  // After numerical trouble the blocks' state may hold NaN: the files keep the last good one.
+  const bool state_valid = r.exit_status != kRunNumericalTrouble;
+  write_outputs(snapshot_at_end && state_valid, state_valid);
   return r;
 }
 

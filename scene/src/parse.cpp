@@ -28,6 +28,14 @@ constexpr double kDegree = 3.14159265358979323846 / 180.0;  // rad per degree
 constexpr double kDefaultShearToNormalStiffness = 0.4;
 /// Default rim arc (half-angle) over which the FEM holds the impact patch, degrees.
 constexpr double kDefaultPatchHalfAngleDeg = 5.0;
+/// Most output intervals a run may have: each writes a VTU snapshot, and more than this fills
+/// a disk before it tells anything a coarser interval would not.
+constexpr double kMaxOutputIntervals = 10'000;
+/// Most crack-count intervals: crack_intervals.csv holds one row per interval.
+constexpr double kMaxCrackIntervals = 100'000;
+/// Most blocks a generated mesh may target: gmsh meshes 10 million for minutes before the
+/// engine's memory (about 10 kB per block) is even asked for.
+constexpr long long kMaxTargetBlocks = 2'000'000;
 /// Relative tolerance on the DDA block count when [mesh] gives none.
 constexpr double kDefaultBlockTolerance = 0.02;
 
@@ -51,6 +59,13 @@ std::vector<std::string> names_of(const std::vector<JointSet>& v) {
   return out;
 }
 
+/// Refuses an interval that cuts end_time into more than `most` pieces, saying the smallest one.
+void check_interval_count(TableReader& t, std::string_view key, double interval, double end_time, double most) {
+  if (!(interval > 0 && end_time > 0) || end_time / interval <= most) return;
+  t.problem(key, fmt::format("makes {:.3g} intervals of analysis.end_time ({:g} s), more than {:g}: use at least {:.3g} s",
+                             end_time / interval, end_time, most, end_time / most));
+}
+
 Analysis parse_analysis(TableReader t) {
   Analysis a;
   if (auto mode = t.choice("mode", {"dynamic", "static"}, Need::Required))
@@ -69,6 +84,7 @@ Analysis parse_analysis(TableReader t) {
     a.solver = *solver == "direct" ? Solver::Direct : Solver::Pcg;
   if (a.end_time > 0 && a.output_interval > a.end_time)
     t.problem("output_interval", fmt::format("must not exceed analysis.end_time ({:g} s)", a.end_time));
+  check_interval_count(t, "output_interval", a.output_interval, a.end_time, kMaxOutputIntervals);
   if (a.dt_max > 0 && a.end_time > 0 && a.dt_max > a.end_time)
     t.problem("dt_max", fmt::format("must not exceed analysis.end_time ({:g} s)", a.end_time));
   t.reject_unknown_keys();
@@ -196,7 +212,7 @@ ParsedGeometry parse_geometry(TableReader t, const std::filesystem::path& scene_
 
 meshes::MeshControl parse_mesh(TableReader t, bool generated) {
   meshes::MeshControl control;
-  if (auto blocks = t.integer("blocks", 1, 10'000'000, generated ? Need::Required : Need::Optional))
+  if (auto blocks = t.integer("blocks", 1, kMaxTargetBlocks, generated ? Need::Required : Need::Optional))
     control.target_blocks = static_cast<int>(*blocks);
   control.block_tolerance =
       t.number("tolerance", NumberRule::open(0.0, 0.5, "relative"), Need::Optional).value_or(kDefaultBlockTolerance);
@@ -214,6 +230,7 @@ std::vector<Body> parse_bodies(TableReader t, const std::vector<Material>& mater
     TableReader b = t.table(name, Need::Required);
     Body body;
     body.name = name;
+    if (const std::string why = detail::name_problem(name); !why.empty()) t.problem(name, why);
     body.material = b.reference("material", material_names, "materials", Need::Required).value_or(0);
     if (auto role = b.choice("role", {"disc", "platen", "plate"}, Need::Required))
       body.role = *role == "platen" ? Role::Platen : *role == "plate" ? Role::Plate : Role::Disc;
@@ -257,7 +274,7 @@ std::vector<Gauge> parse_gauges(std::vector<TableReader> tables, double diameter
   std::vector<Gauge> out;
   for (TableReader& g : tables) {
     Gauge gauge;
-    gauge.name = g.text("name", Need::Required).value_or("");
+    gauge.name = g.name("name", Need::Required).value_or("");
     if (auto p = g.vec2("position", "m", Need::Required)) {
       gauge.position = *p;
       const double radius = 0.5 * diameter;
@@ -273,11 +290,12 @@ std::vector<Gauge> parse_gauges(std::vector<TableReader> tables, double diameter
   return out;
 }
 
-Output parse_output(TableReader t) {
+Output parse_output(TableReader t, double end_time) {
   Output out;
   out.vtk = t.boolean("vtk", Need::Optional).value_or(out.vtk);
   out.figures = t.boolean("figures", Need::Optional).value_or(out.figures);
   out.crack_interval = t.number("crack_interval", NumberRule::positive("s"), Need::Optional).value_or(out.crack_interval);
+  check_interval_count(t, "crack_interval", out.crack_interval, end_time, kMaxCrackIntervals);
   // Times past the end of a (shortened) run are drawn at the last snapshot, not refused.
   out.figure_times = t.numbers("figure_times", NumberRule::non_negative("s"), Need::Optional).value_or(std::vector<double>{});
   t.reject_unknown_keys();
@@ -304,7 +322,7 @@ Scene parse_document(const toml::table& document, const std::filesystem::path& f
 
   Scene scene;
   scene.source = file;
-  scene.name = top.text("name", Need::Optional).value_or(file.stem().string());
+  scene.name = top.name_or_file_stem("name", file);
   scene.description = top.text("description", Need::Optional).value_or("");
   scene.analysis = parse_analysis(top.table("analysis", Need::Required));
   scene.materials = parse_materials(top.table("materials", Need::Required));
@@ -325,7 +343,7 @@ Scene parse_document(const toml::table& document, const std::filesystem::path& f
     check_bodies(bodies, scene.bodies, geometry.bodies, "the geometry generator");
 
   scene.gauges = parse_gauges(top.table_array("gauges", Need::Optional), geometry.diameter);
-  scene.output = parse_output(top.table("output", Need::Optional));
+  scene.output = parse_output(top.table("output", Need::Optional), scene.analysis.end_time);
   scene.verification = parse_verification(top.table("verification", Need::Optional));
   top.reject_unknown_keys();
   return scene;

@@ -8,12 +8,6 @@
 
 namespace ddafrac::scene {
 
-namespace {
-/// More simultaneous runs than this is taken for a typo.
-constexpr long long kMaxParallelRuns = 256;
-constexpr long long kMaxThreadsPerRun = 1024;
-}  // namespace
-
 Sweep load_sweep(const std::filesystem::path& path) {
   using detail::Need;
   detail::Diagnostics diagnostics(path.string());
@@ -27,7 +21,7 @@ Sweep load_sweep(const std::filesystem::path& path) {
   detail::TableReader top(&document, "", region, diagnostics);
   Sweep sweep;
   sweep.source = path;
-  sweep.name = top.text("name", Need::Optional).value_or(path.stem().string());
+  sweep.name = top.name_or_file_stem("name", path);
   sweep.crack_time = top.number("crack_time", detail::NumberRule::positive("s"), Need::Required).value_or(0.0);
   sweep.parallel = static_cast<int>(top.integer("parallel", 0, kMaxParallelRuns, Need::Optional).value_or(0));
   sweep.threads = static_cast<int>(top.integer("threads", 1, kMaxThreadsPerRun, Need::Optional).value_or(1));

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 namespace ddafrac::scene::detail {
@@ -59,13 +60,57 @@ std::string quoted_list(const std::vector<std::string>& options) {
   return out;
 }
 
+/// A name longer than this is taken for a mistake (it becomes a folder name; 255 bytes is the limit).
+constexpr std::size_t kMaxNameBytes = 64;
+
+/// The length of the UTF-8 sequence starting at text[i], or 0 if it is not a valid one.
+std::size_t utf8_sequence_length(std::string_view text, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char lead = byte(i);
+  const std::size_t length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xe ? 3 : (lead >> 3) == 0x1e ? 4 : 0;
+  if (length == 0 || i + length > text.size()) return 0;
+  for (std::size_t k = 1; k < length; ++k)
+    if ((byte(i + k) >> 6) != 0x2) return 0;
+  return length;
+}
+
+bool allowed_ascii_in_name(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || std::string_view(" _-.+()").find(c) != std::string_view::npos;
+}
+
 }  // namespace
+
+bool valid_utf8(std::string_view text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t length = utf8_sequence_length(text, i);
+    if (length == 0) return false;
+    i += length;
+  }
+  return true;
+}
+
+std::string name_problem(std::string_view name) {
+  constexpr std::string_view kRule =
+      "a name of letters, digits, spaces and _ - . + ( ), not starting with a dot or a space";
+  if (name.empty()) return fmt::format("expected {}, got an empty string", kRule);
+  if (name.size() > kMaxNameBytes) return fmt::format("expected {}, at most {} bytes long, got {} bytes", kRule, kMaxNameBytes, name.size());
+  for (std::size_t i = 0; i < name.size();) {
+    const std::size_t length = utf8_sequence_length(name, i);
+    if (length == 0) return "not valid UTF-8 (byte " + std::to_string(i + 1) + ")";
+    if (length == 1 && !allowed_ascii_in_name(name[i]))
+      return fmt::format("expected {}, got {:?} (the character {:?} is not allowed)", kRule, name, name.substr(i, 1));
+    i += length;
+  }
+  if (name.front() == '.' || name.front() == ' ') return fmt::format("expected {}, got {:?}", kRule, name);
+  return {};
+}
 
 void Diagnostics::report(const toml::source_region& where, std::string key, std::string message) {
   Problem p;
   p.file = where.path ? *where.path : fallback_file_;
-  p.line = static_cast<int>(where.begin.line);
-  p.column = static_cast<int>(where.begin.column);
+  const bool command_line = p.file.compare(0, kOverrideOrigin.size(), kOverrideOrigin) == 0;
+  p.line = command_line ? 0 : static_cast<int>(where.begin.line);
+  p.column = command_line ? 0 : static_cast<int>(where.begin.column);
   p.key = std::move(key);
   p.message = std::move(message);
   problems_.push_back(std::move(p));
@@ -183,6 +228,24 @@ std::optional<bool> TableReader::boolean(std::string_view key, Need need) {
 std::optional<std::string> TableReader::text(std::string_view key, Need need) {
   if (const auto* s = find_as<std::string>(key, need, "a string")) return s->get();
   return std::nullopt;
+}
+
+std::optional<std::string> TableReader::name(std::string_view key, Need need) {
+  std::optional<std::string> value = text(key, need);
+  if (!value) return value;
+  if (const std::string why = name_problem(*value); !why.empty()) {
+    problem(key, why);
+    return std::nullopt;
+  }
+  return value;
+}
+
+std::string TableReader::name_or_file_stem(std::string_view key, const std::filesystem::path& file) {
+  if (has(key)) return name(key, Need::Required).value_or("");
+  const std::string stem = file.stem().string();
+  if (const std::string why = name_problem(stem); !why.empty())
+    problem(key, fmt::format("missing, and the file name cannot stand in for it: {}; give a {} = \"...\"", why, key));
+  return stem;
 }
 
 std::optional<std::string> TableReader::choice(std::string_view key, const std::vector<std::string>& options,

@@ -6,6 +6,7 @@
 #include <toml++/toml.h>
 
 #include <array>
+#include <filesystem>
 #include <initializer_list>
 #include <optional>
 #include <set>
@@ -16,6 +17,10 @@
 #include "ddafrac/scene/parse.hpp"
 
 namespace ddafrac::scene::detail {
+
+/// The source name of a value given on the command line: "--set key=value". Such a value has no
+/// line of its own (toml++ gives it line 1 of its one-line text), so problems name the option only.
+inline constexpr std::string_view kOverrideOrigin = "--set ";
 
 /// Collects problems; knows which file to blame when a node has no source of its own.
 class Diagnostics {
@@ -51,6 +56,15 @@ struct NumberRule {
   static NumberRule half_open(double lo, double hi, std::string unit = "") { return {lo, hi, false, true, std::move(unit)}; }
 };
 
+/// Why `name` cannot name an output, or "" if it can. Scene, body and gauge names become folder
+/// names, CSV fields and JSON strings, so a name is valid UTF-8 and holds only letters (of any
+/// script), digits, spaces and _ - . + ( ), not starting with a dot or a space: no path
+/// separator, no "..", no comma, quote or control character.
+std::string name_problem(std::string_view name);
+
+/// Whether `text` is valid UTF-8 (TOML, JSON and the messages need it).
+bool valid_utf8(std::string_view text);
+
 /// The closest candidate within a small edit distance, or "" if none is close.
 std::string closest_match(std::string_view word, const std::vector<std::string>& candidates);
 
@@ -64,6 +78,10 @@ class TableReader {
   std::optional<long long> integer(std::string_view key, long long min, long long max, Need need);
   std::optional<bool> boolean(std::string_view key, Need need);
   std::optional<std::string> text(std::string_view key, Need need);
+  /// A string that names an output (see name_problem).
+  std::optional<std::string> name(std::string_view key, Need need);
+  /// `key` as a name; without it, the stem of `file`, which must then be a valid name itself.
+  std::string name_or_file_stem(std::string_view key, const std::filesystem::path& file);
   /// A string that must be one of `options`.
   std::optional<std::string> choice(std::string_view key, const std::vector<std::string>& options,
                                     Need need);

@@ -398,3 +398,64 @@ BOOST_AUTO_TEST_CASE(negative_verification_tolerance_is_refused) {
   expect_problem(kValid + "[verification]\ngauge_rms = -0.2\n", "verification.gauge_rms", 49,
                  "> 0 (relative error), got -0.2");
 }
+
+// --- names that become folders and CSV fields; what toml++ is handed (issue 13) ----------
+
+namespace {
+
+/// Loads the scene at `path` with `overrides` and returns the problems it was refused for.
+std::vector<scene::Problem> load_problems(const std::filesystem::path& path, const std::vector<std::string>& overrides = {}) {
+  try {
+    scene::load_scene(path, overrides);
+  } catch (const scene::SceneError& e) {
+    return e.problems();
+  }
+  BOOST_FAIL("the scene was accepted");
+  return {};
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(a_scene_name_cannot_climb_out_of_the_output_folder) {
+  expect_problem(replaced(kValid, "name = \"t\"", "name = \"../../x\""), "name", 1, "the character \"/\" is not allowed");
+}
+
+BOOST_AUTO_TEST_CASE(a_gauge_name_cannot_break_the_columns_of_gauges_csv) {
+  expect_problem(replaced(kValid, "name = \"A\"", "name = \"A,B\""), "gauges[0].name", 46, "\",\" is not allowed");
+}
+
+BOOST_AUTO_TEST_CASE(a_file_name_that_is_not_utf8_cannot_stand_in_for_the_name) {
+  try {
+    scene::parse_scene(replaced(kValid, "name = \"t\"\n", ""), "\xff\xfe.toml");
+    BOOST_FAIL("accepted");
+  } catch (const scene::SceneError& e) {
+    BOOST_TEST_REQUIRE(e.problems().size() == 1u);
+    BOOST_TEST(e.problems()[0].key == "name");
+    BOOST_TEST(e.problems()[0].message.find("not valid UTF-8") != std::string::npos);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_dotted_key_of_a_hundred_thousand_parts_is_refused_before_toml_parses_it) {
+  std::string deep = "a";
+  for (int i = 0; i < 100000; ++i) deep += ".a";
+  expect_problem(kValid + deep + " = 1\n", "", 48, "a key of more than 64 dotted parts");
+}
+
+BOOST_AUTO_TEST_CASE(a_crack_interval_that_cuts_the_run_into_too_many_pieces_is_refused) {
+  expect_problem(kValid + "[output]\ncrack_interval = 1e-300\n", "output.crack_interval", 49, "more than 100000");
+}
+
+BOOST_AUTO_TEST_CASE(a_bad_set_value_is_blamed_on_the_option_without_a_line) {
+  const auto p = load_problems(write_temp("plain_set.toml", kValid), {"analysis.mode=statc", "outptu.vtk=true"});
+  BOOST_TEST_REQUIRE(p.size() == 2u);
+  BOOST_TEST(p[0].file == "--set analysis.mode=statc");
+  BOOST_TEST(p[0].line == 0);
+  BOOST_TEST(p[1].file == "--set outptu.vtk=true");
+  BOOST_TEST(p[1].message.find("did you mean \"output\"") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(a_scene_file_of_two_megabytes_is_refused_unread) {
+  const auto p = load_problems(write_temp("huge.toml", kValid + "#" + std::string(2u << 20, 'x') + "\n"));
+  BOOST_TEST_REQUIRE(p.size() == 1u);
+  BOOST_TEST(p[0].message.find("too long for a scene (at most 1048576 bytes)") != std::string::npos);
+}

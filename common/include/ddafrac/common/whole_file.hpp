@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <regex>
 #include <string_view>
 
 namespace ddafrac::common {
@@ -16,5 +17,12 @@ void write_whole_file(const std::filesystem::path& target,
 
 /// Writes `text` as the whole content of `target`. Throws std::runtime_error naming the file.
 void write_whole_text(const std::filesystem::path& target, std::string_view text);
+
+/// The temporary name write_whole_file writes `target` under: ".<stem>.partial<extension>".
+std::filesystem::path partial_name(const std::filesystem::path& target);
+
+/// Removes the regular files directly in `folder` whose names match `pattern` (nothing else, no
+/// sub-folder); returns how many. A missing folder holds nothing.
+std::size_t remove_files_matching(const std::filesystem::path& folder, const std::regex& pattern);
 
 }  // namespace ddafrac::common

@@ -14,6 +14,8 @@ namespace ddafrac::dda {
 
 /// Exit status of a run (also the process exit code of `ddafrac run`).
 enum RunExit : int { kRunCompleted = 0, kRunNumericalTrouble = 3, kRunInterrupted = 130 };
+/// A run stopped by signal s exits with 128 + s, as a shell reports it (130 SIGINT, 143 SIGTERM).
+inline constexpr int kSignalExitBase = 128;
 
 struct Progress {
   double time = 0.0, end_time = 0.0;  // s, simulated
@@ -32,8 +34,9 @@ struct RunOptions {
   bool vtk = true;          // snapshots at every output interval
   double progress_every = 0.1;  // wall seconds between progress callbacks
   std::function<void(const Progress&)> progress;
-  /// Stop request (e.g. set by a SIGINT handler owned by the caller); checked once per step.
-  const std::atomic<bool>* stop = nullptr;
+  /// Stop request: the number of the signal received (set by a handler owned by the caller),
+  /// 0 while none; checked once per step. The run's exit status is then 128 + the signal.
+  const std::atomic<int>* stop = nullptr;
 };
 
 /// Run directory contents besides the VTU files, all written whole at every
@@ -54,7 +57,14 @@ struct RunResult {
   double wall = 0.0;
 };
 
-/// Runs the engine to its end time (or max_steps / stop request / numerical trouble).
+/// Removes from `dir` the files a previous run_simulation wrote there (summary.json, the CSV
+/// files, run.pvd, vtk/snapshot_NNNNNN.vtu and their temporaries) and nothing else, so a new run
+/// never sits beside stale snapshots. Returns how many files it removed.
+std::size_t remove_previous_run(const std::filesystem::path& dir);
+
+/// Runs the engine to its end time (or max_steps / stop request / numerical trouble). A step
+/// whose energies are not finite (NaN or infinity) ends the run as numerical trouble before it
+/// reaches any file.
 RunResult run_simulation(Engine& engine, const RunOptions& options);
 
 /// VTK XML unstructured grid of the blocks (polygons, VTK type 7) followed by the joints broken

@@ -8,6 +8,11 @@
 
 namespace ddafrac::scene {
 
+/// More simultaneous runs, or more OpenMP threads per run, than these is taken for a typo (the
+/// command-line options --parallel and --threads share the bounds).
+inline constexpr long long kMaxParallelRuns = 256;
+inline constexpr long long kMaxThreadsPerRun = 1024;
+
 struct Sweep {
   std::string name;
   std::filesystem::path source;              // the sweep file

@@ -1,0 +1,27 @@
+#pragma once
+// Checks of numeric command-line values that name the option, what it expects and what was
+// typed ("--threads: expected a whole number >= 1, got 0"), in place of CLI11's own range
+// checks, whose message prints the largest double in full (309 digits).
+
+#include <limits>
+
+#include "ddafrac/scene/sweep.hpp"
+
+namespace CLI {
+class Validator;
+}
+
+namespace ddafrac::app {
+
+inline constexpr long long kNoUpperLimit = std::numeric_limits<long long>::max();
+/// --threads of every command and --parallel of sweep share the bounds of a sweep file.
+inline constexpr long long kMaxThreads = scene::kMaxThreadsPerRun;
+using scene::kMaxParallelRuns;
+
+/// A whole number in [min, max].
+CLI::Validator whole_number(long long min, long long max = kNoUpperLimit);
+
+/// A finite number > 0.
+CLI::Validator positive_number();
+
+}  // namespace ddafrac::app
