@@ -1,5 +1,6 @@
-// `ddafrac bench`: a glued ring-triangulated disc impacting a plate at several block counts;
-// µs per block-step in total and per phase, for each thread count; table + JSON + CSV.
+// `ddafrac bench`: µs per block-step in total and per phase, for each thread count; table + JSON +
+// CSV. Either a glued ring-triangulated disc impacting a plate at several block counts (scaling),
+// or the first steps of a real scene (`--scene FILE [--set key=value]`), medians of repeats.
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
@@ -30,6 +31,9 @@ constexpr long long kMaxBenchBlocks = 1'000'000;
 
 struct BenchArguments {
   std::vector<int> blocks{1000, 2000, 4000, 8000, 16000};
+  std::string scene_file;              // --scene: bench this scene's first steps instead
+  std::vector<std::string> overrides;  // --set for --scene
+  int repeat = 1;                      // runs per case; the median by total time is reported
   std::vector<int> threads{1, 2};
   int steps = 50;
   int warmup = 5;
@@ -47,18 +51,24 @@ struct BenchRow {
   dda::PhaseTimes us;  // µs per block-step
 };
 
-BenchRow bench_one(int target, int threads, const BenchArguments& a) {
+/// One bench case: the scene and mesh to run, and the target block count it stands for.
+struct BenchCase {
+  scene::Scene scene;
+  meshes::Mesh mesh;
+  int target = 0;
+};
+
+BenchRow bench_one(const BenchCase& bc, int threads, const BenchArguments& a) {
   omp_set_num_threads(threads);
-  const meshes::Mesh mesh = dda::make_ring_disc_mesh(0.1, target);
   dda::EngineOptions o;
   o.solver.kind = a.solver == "direct" ? dda::SolverKind::Direct : dda::SolverKind::Pcg;
-  dda::Engine e(dda::make_impact_scene(3.5, 1.0), mesh, o);
+  dda::Engine e(bc.scene, bc.mesh, o);
   for (int k = 0; k < a.warmup; ++k) e.step();
   const dda::Statistics before = e.statistics();
   for (int k = 0; k < a.steps; ++k) e.step();
   const dda::Statistics& after = e.statistics();
   BenchRow r;
-  r.target = target;
+  r.target = bc.target;
   r.blocks = e.blocks().block_count();
   r.contacts = e.contacts().contacts.size();
   r.threads = threads;
@@ -75,8 +85,30 @@ BenchRow bench_one(int target, int threads, const BenchArguments& a) {
   return r;
 }
 
-void run_bench(const BenchArguments& a) {
+/// The row of median total time among `repeat` runs of one case.
+BenchRow bench_median(const BenchCase& bc, int threads, const BenchArguments& a) {
+  std::vector<BenchRow> runs;
+  for (int k = 0; k < a.repeat; ++k) runs.push_back(bench_one(bc, threads, a));
+  std::sort(runs.begin(), runs.end(), [](const BenchRow& p, const BenchRow& q) { return p.us.total() < q.us.total(); });
+  return runs[runs.size() / 2];
+}
+
+std::vector<BenchCase> bench_cases(const BenchArguments& a) {
+  std::vector<BenchCase> cases;
+  if (!a.scene_file.empty()) {
+    scene::Scene s = SceneArguments{a.scene_file, a.overrides}.load();
+    meshes::Mesh mesh = dda_mesh(s);
+    const int target = s.mesh.target_blocks;
+    cases.push_back({std::move(s), std::move(mesh), target});
+    return cases;
+  }
   check_memory_for_blocks(*std::max_element(a.blocks.begin(), a.blocks.end()), "--blocks");
+  for (int target : a.blocks)
+    cases.push_back({dda::make_impact_scene(3.5, 1.0), dda::make_ring_disc_mesh(0.1, target), target});
+  return cases;
+}
+
+void run_bench(const BenchArguments& a) {
   const std::filesystem::path out = a.out;
   std::filesystem::create_directories(out);
   std::vector<BenchRow> rows;
@@ -88,14 +120,15 @@ void run_bench(const BenchArguments& a) {
                m.compute_speedup, m.memory_speedup);
     ceiling = {{"threads", m.threads}, {"compute_speedup", m.compute_speedup}, {"memory_speedup", m.memory_speedup}};
   }
-  fmt::print("glued disc impacting a plate, {} steps after {} warm-up steps, solver {}; µs per block-step\n", a.steps,
-             a.warmup, a.solver);
+  fmt::print("{}, {} steps after {} warm-up steps, solver {}, median of {}; µs per block-step\n",
+             a.scene_file.empty() ? std::string("glued disc impacting a plate") : a.scene_file, a.steps, a.warmup,
+             a.solver, a.repeat);
   fmt::print("{:>7} {:>8} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>7} {:>8}\n", "blocks", "contacts",
              "threads", "total", "detect", "assemble", "solve", "judge", "fracture", "update", "cg/it", "speedup");
-  for (int target : a.blocks) {
+  for (const BenchCase& bc : bench_cases(a)) {
     double base = 0.0;
     for (int t : a.threads) {
-      const BenchRow r = bench_one(target, t, a);
+      const BenchRow r = bench_median(bc, t, a);
       if (base == 0.0) base = r.us.total();
       fmt::print("{:>7} {:>8} {:>7} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>7.2f} {:>7.2f}x\n",
                  r.blocks, r.contacts, r.threads, r.us.total(), r.us.detection, r.us.assembly, r.us.solve,
@@ -124,7 +157,13 @@ void run_bench(const BenchArguments& a) {
                        r.threads, r.steps, r.us.total(), r.us.detection, r.us.assembly, r.us.solve, r.us.judgement,
                        r.us.fracture, r.us.update, r.cg_mean);
   }
-  const nlohmann::json j = {{"machine_ceiling", ceiling}, {"cases", cases}};
+  const nlohmann::json j = {{"scene", a.scene_file.empty() ? std::string("synthetic ring disc") : a.scene_file},
+                            {"overrides", a.overrides},
+                            {"steps", a.steps},
+                            {"warmup", a.warmup},
+                            {"repeat", a.repeat},
+                            {"machine_ceiling", ceiling},
+                            {"cases", cases}};
   common::write_whole_text(out / "bench.json", j.dump(2) + "\n");
   common::write_whole_text(out / "bench.csv", csv);
   fmt::print("wrote {}/{{bench.json, bench.csv}}\n", out.string());
@@ -135,10 +174,17 @@ void run_bench(const BenchArguments& a) {
 void register_bench_command(CLI::App& app) {
   auto args = std::make_shared<BenchArguments>();
   CLI::App* command =
-      app.add_subcommand("bench", "benchmark the DDA engine: glued disc impacting a plate, µs per block-step per phase");
+      app.add_subcommand("bench", "benchmark the DDA engine: µs per block-step per phase, on a glued disc impacting a "
+                                  "plate at several sizes or on the first steps of a scene (--scene)");
   command->add_option("--blocks", args->blocks, "block counts (default 1000 2000 4000 8000 16000)")
       ->delimiter(',')
       ->check(whole_number(kSmallestRingDisc, kMaxBenchBlocks));
+  command->add_option("--scene", args->scene_file, "bench this scene file's first --steps steps instead of the synthetic disc")
+      ->check(CLI::ExistingFile);
+  command->add_option("--set", args->overrides, "override a value of the --scene scene, e.g. --set contacts.penalty=3.9e12")
+      ->type_name("KEY=VALUE");
+  command->add_option("--repeat", args->repeat, "runs per case; the median by total time is reported (default 1)")
+      ->check(whole_number(1));
   command->add_option("--threads", args->threads, "thread counts (default 1 2)")->delimiter(',')->check(whole_number(1, kMaxThreads));
   command->add_option("--steps", args->steps, "timed steps per case")->check(whole_number(1));
   command->add_option("--warmup", args->warmup, "untimed steps first")->check(whole_number(0));
