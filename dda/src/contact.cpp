@@ -17,10 +17,6 @@ const char* to_string(ContactState s) {
 
 namespace {
 
-bool key_less(const Contact& p, const Contact& q) {
-  return std::make_tuple(p.pair_low(), p.pair_high(), p.vertex) < std::make_tuple(q.pair_low(), q.pair_high(), q.vertex);
-}
-
 constexpr double kTwoPi = 6.283185307179586;
 /// Upper bound on broad-phase grid cells per block (keeps the grid O(N) in memory).
 constexpr double kMaxCellsPerBlock = 4.0;
@@ -33,7 +29,7 @@ constexpr double kPenetrationEdgeFraction = 0.3;
 struct View {
   const BlockSystem& s;
   const DetectionWorkspace& w;
-  const std::vector<Contact>& previous;  // the previous step's contacts, sorted by key_less
+  const std::vector<Contact>& previous;  // the previous step's contacts, sorted by (pair, vertex)
   double x(Index v) const { return s.vx[static_cast<std::size_t>(v)]; }
   double y(Index v) const { return s.vy[static_cast<std::size_t>(v)]; }
   Index prev(Index block, Index v) const { return v == s.begin(block) ? s.end(block) - 1 : v - 1; }
@@ -136,13 +132,10 @@ void offer(Candidate& slot, const Candidate& c) {
 /// Did the previous step hold vertex v of vblock closed against the edge of eblock that starts
 /// at e0, as a vertex-vertex contact?
 bool was_closed_against(const View& w, Index vblock, Index v, Index eblock, Index e0) {
-  Contact key;
-  key.vblock = vblock;
-  key.eblock = eblock;
-  key.vertex = v;
-  const auto it = std::lower_bound(w.previous.begin(), w.previous.end(), key, key_less);
-  return it != w.previous.end() && !key_less(key, *it) && it->vertex_vertex && it->eblock == eblock &&
-         it->edge0 == e0 && it->state != ContactState::Open;
+  const Index k = w.w.previous_by_vertex.find(w.previous, v, vblock, eblock);
+  if (k < 0) return false;
+  const Contact& c = w.previous[static_cast<std::size_t>(k)];
+  return c.vertex_vertex && c.eblock == eblock && c.edge0 == e0 && c.state != ContactState::Open;
 }
 
 /// Narrow phase of one block pair a < b; appends at most one contact per vertex.
@@ -294,6 +287,26 @@ void vertex_data(const BlockSystem& s, DetectionWorkspace& w) {
 
 }  // namespace
 
+void ContactsByVertex::build(const std::vector<Contact>& list, std::size_t vertex_count) {
+  offsets.assign(vertex_count + 1, 0);
+  for (const Contact& c : list) ++offsets[static_cast<std::size_t>(c.vertex) + 1];
+  for (std::size_t v = 0; v < vertex_count; ++v) offsets[v + 1] += offsets[v];
+  contacts.resize(list.size());
+  std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
+  for (std::size_t k = 0; k < list.size(); ++k)
+    contacts[static_cast<std::size_t>(fill[static_cast<std::size_t>(list[k].vertex)]++)] = static_cast<Index>(k);
+}
+
+Index ContactsByVertex::find(const std::vector<Contact>& list, Index v, Index p, Index q) const {
+  const Index low = std::min(p, q), high = std::max(p, q);
+  for (Index m = offsets[static_cast<std::size_t>(v)]; m < offsets[static_cast<std::size_t>(v) + 1]; ++m) {
+    const Index k = contacts[static_cast<std::size_t>(m)];
+    const Contact& c = list[static_cast<std::size_t>(k)];
+    if (c.pair_low() == low && c.pair_high() == high) return k;
+  }
+  return -1;
+}
+
 std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams& prm,
                                      DetectionWorkspace& work, const std::vector<Contact>& previous) {
   const std::size_t n = s.block_count();
@@ -360,6 +373,7 @@ std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams
   }
   work.candidates.resize(n);
   work.found.resize(n);
+  work.previous_by_vertex.build(previous, s.vertex_count());
   vertex_data(s, work);
   const View w{s, work, previous};
 #pragma omp parallel
@@ -412,21 +426,26 @@ namespace {
 /// swapped, or null: the angle rules may pick the other reference line of a vertex-vertex
 /// contact as the blocks move, and a vertex-vertex contact whose vertices drift apart becomes a
 /// vertex-edge contact of whichever vertex entered the other block (and back).
-const Contact* swapped_corner(const std::vector<Contact>& previous, const Contact& c) {
-  auto pair_less = [](const Contact& p, const Contact& q) {
-    return std::make_pair(p.pair_low(), p.pair_high()) < std::make_pair(q.pair_low(), q.pair_high());
-  };
-  const auto [first, last] = std::equal_range(previous.begin(), previous.end(), c, pair_less);
-  for (auto it = first; it != last; ++it)
-    if ((it->vertex_vertex || c.vertex_vertex) && (it->vertex == c.edge0 || it->vertex == c.edge1) &&
-        (c.vertex == it->edge0 || c.vertex == it->edge1))
-      return &*it;
-  return nullptr;
+const Contact* swapped_corner(const std::vector<Contact>& previous, const ContactsByVertex& by_vertex,
+                              const Contact& c) {
+  // Its vertex is one of c's edge ends; of two matches the first in list order (lower vertex).
+  const Contact* found = nullptr;
+  for (const Index v : {std::min(c.edge0, c.edge1), std::max(c.edge0, c.edge1)}) {
+    const Index k = by_vertex.find(previous, v, c.vblock, c.eblock);
+    if (k < 0) continue;
+    const Contact& p = previous[static_cast<std::size_t>(k)];
+    if ((p.vertex_vertex || c.vertex_vertex) && (c.vertex == p.edge0 || c.vertex == p.edge1)) {
+      found = &p;
+      break;
+    }
+  }
+  return found;
 }
 
 }  // namespace
 
-std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& previous, std::vector<Contact>& current,
+std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& previous,
+                                                 const ContactsByVertex& previous_by_vertex, std::vector<Contact>& current,
                                                  const std::vector<Joint>& joints, const BlockSystem& blocks) {
   const auto n = static_cast<std::int64_t>(current.size());
   std::vector<std::uint8_t> carried(previous.size(), 0);
@@ -437,10 +456,9 @@ std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& pre
     // start at exactly zero gap and stay open until they overlap.
     const bool touching = c.shared_node ? c.d0 < 0.0 : c.d0 <= 0.0;
     c.state = touching || c.bonded(joints) ? ContactState::Locked : ContactState::Open;
-    const Contact* p = nullptr;
-    auto it = std::lower_bound(previous.begin(), previous.end(), c, key_less);
-    if (it != previous.end() && !key_less(c, *it)) p = &*it;
-    const bool swapped = !p && (p = swapped_corner(previous, c)) != nullptr;
+    const Index same = previous_by_vertex.find(previous, c.vertex, c.vblock, c.eblock);
+    const Contact* p = same >= 0 ? &previous[static_cast<std::size_t>(same)] : nullptr;
+    const bool swapped = !p && (p = swapped_corner(previous, previous_by_vertex, c)) != nullptr;
     if (!p) continue;
     c.carried = true;
 #pragma omp atomic write

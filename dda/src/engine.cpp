@@ -109,7 +109,7 @@ void Engine::trouble(const std::string& what) const {
 
 void Engine::detect() {
   std::vector<Contact> found = detect_contacts(blocks_, options_.detection, detection_, set_.contacts);
-  const std::vector<std::uint8_t> carried = transfer_contact_state(set_.contacts, found, blocks_.joints, blocks_);
+  const std::vector<std::uint8_t> carried = transfer_contact_state(set_.contacts, detection_.previous_by_vertex, found, blocks_.joints, blocks_);
   ledger_.total += chunked_sum<StepEnergy>(static_cast<std::int64_t>(carried.size()), [&](std::int64_t k) {
     const Contact& vanished = set_.contacts[k];
     return carried[k] ? StepEnergy{} : released_energy(vanished, vanished.bonded(blocks_.joints));

@@ -103,6 +103,16 @@ struct ContactCandidate {
   bool shared_node = false;  // vv between the copies of one mesh node in one body (Contact::shared_node)
 };
 
+/// The contacts of a list grouped by vertex (CSR): the contact of a vertex in a block pair is
+/// found among the vertex's own few contacts instead of by a search through the whole list.
+struct ContactsByVertex {
+  std::vector<Index> offsets;   // per vertex, into `contacts`
+  std::vector<Index> contacts;  // list indices, ascending for each vertex
+  void build(const std::vector<Contact>& list, std::size_t vertex_count);
+  /// Index in `list` of the contact of vertex v in the block pair {p, q}, or -1.
+  Index find(const std::vector<Contact>& list, Index v, Index p, Index q) const;
+};
+
 /// Reusable scratch space of the broad phase (avoids reallocation every step).
 struct DetectionWorkspace {
   std::vector<double> xmin, xmax, ymin, ymax;  // per block, expanded by half the search distance
@@ -113,11 +123,13 @@ struct DetectionWorkspace {
   std::vector<Index> cell_offsets, cell_blocks;
   std::vector<std::vector<Index>> candidates;  // per block: partner blocks > it
   std::vector<std::vector<ContactCandidate>> found;  // per block: contacts of its pairs
+  ContactsByVertex previous_by_vertex;               // the previous step's contacts
 };
 
 /// Finds all contacts (identity and geometry only; state is transferred afterwards). The
 /// previous step's contacts (sorted, as returned) only decide which reference line a closed
-/// vertex-vertex corner keeps. Deterministic: the output is sorted by (low block, high block,
+/// vertex-vertex corner keeps; work.previous_by_vertex is left indexing them for
+/// transfer_contact_state. Deterministic: the output is sorted by (low block, high block,
 /// vertex) whatever the threads.
 std::vector<Contact> detect_contacts(const BlockSystem& blocks, const DetectionParams& params,
                                      DetectionWorkspace& work, const std::vector<Contact>& previous);
@@ -127,8 +139,9 @@ std::vector<Contact> detect_contacts(const BlockSystem& blocks, const DetectionP
 /// swapped; new contacts start closed (locked) if they touch or are bonded joints, else open (a
 /// broken joint starts like a contact that was never bonded).
 /// Returns, per previous contact, whether some current contact carried its state (1) or it
-/// vanished (0).
-std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& previous, std::vector<Contact>& current,
+/// vanished (0). `previous_by_vertex` indexes `previous` (DetectionWorkspace after detection).
+std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& previous,
+                                                 const ContactsByVertex& previous_by_vertex, std::vector<Contact>& current,
                                                  const std::vector<Joint>& joints, const BlockSystem& blocks);
 
 /// Fills pairs and per-block lists of a sorted contact list.
