@@ -132,7 +132,7 @@ void offer(Candidate& slot, const Candidate& c) {
 /// Did the previous step hold vertex v of vblock closed against the edge of eblock that starts
 /// at e0, as a vertex-vertex contact?
 bool was_closed_against(const View& w, Index vblock, Index v, Index eblock, Index e0) {
-  const Index k = w.w.previous_by_vertex.find(w.previous, v, vblock, eblock);
+  const Index k = w.w.previous_by_vertex.find(v, vblock, eblock);
   if (k < 0) return false;
   const Contact& c = w.previous[static_cast<std::size_t>(k)];
   return c.vertex_vertex && c.eblock == eblock && c.edge0 == e0 && c.state != ContactState::Open;
@@ -292,18 +292,22 @@ void ContactsByVertex::build(const std::vector<Contact>& list, std::size_t verte
   for (const Contact& c : list) ++offsets[static_cast<std::size_t>(c.vertex) + 1];
   for (std::size_t v = 0; v < vertex_count; ++v) offsets[v + 1] += offsets[v];
   contacts.resize(list.size());
+  low.resize(list.size());
+  high.resize(list.size());
   std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
-  for (std::size_t k = 0; k < list.size(); ++k)
-    contacts[static_cast<std::size_t>(fill[static_cast<std::size_t>(list[k].vertex)]++)] = static_cast<Index>(k);
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const auto m = static_cast<std::size_t>(fill[static_cast<std::size_t>(list[k].vertex)]++);
+    contacts[m] = static_cast<Index>(k);
+    low[m] = list[k].pair_low();
+    high[m] = list[k].pair_high();
+  }
 }
 
-Index ContactsByVertex::find(const std::vector<Contact>& list, Index v, Index p, Index q) const {
-  const Index low = std::min(p, q), high = std::max(p, q);
-  for (Index m = offsets[static_cast<std::size_t>(v)]; m < offsets[static_cast<std::size_t>(v) + 1]; ++m) {
-    const Index k = contacts[static_cast<std::size_t>(m)];
-    const Contact& c = list[static_cast<std::size_t>(k)];
-    if (c.pair_low() == low && c.pair_high() == high) return k;
-  }
+Index ContactsByVertex::find(Index v, Index p, Index q) const {
+  const Index lo = std::min(p, q), hi = std::max(p, q);
+  for (Index m = offsets[static_cast<std::size_t>(v)]; m < offsets[static_cast<std::size_t>(v) + 1]; ++m)
+    if (low[static_cast<std::size_t>(m)] == lo && high[static_cast<std::size_t>(m)] == hi)
+      return contacts[static_cast<std::size_t>(m)];
   return -1;
 }
 
@@ -431,7 +435,7 @@ const Contact* swapped_corner(const std::vector<Contact>& previous, const Contac
   // Its vertex is one of c's edge ends; of two matches the first in list order (lower vertex).
   const Contact* found = nullptr;
   for (const Index v : {std::min(c.edge0, c.edge1), std::max(c.edge0, c.edge1)}) {
-    const Index k = by_vertex.find(previous, v, c.vblock, c.eblock);
+    const Index k = by_vertex.find(v, c.vblock, c.eblock);
     if (k < 0) continue;
     const Contact& p = previous[static_cast<std::size_t>(k)];
     if ((p.vertex_vertex || c.vertex_vertex) && (c.vertex == p.edge0 || c.vertex == p.edge1)) {
@@ -456,7 +460,7 @@ std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& pre
     // start at exactly zero gap and stay open until they overlap.
     const bool touching = c.shared_node ? c.d0 < 0.0 : c.d0 <= 0.0;
     c.state = touching || c.bonded(joints) ? ContactState::Locked : ContactState::Open;
-    const Index same = previous_by_vertex.find(previous, c.vertex, c.vblock, c.eblock);
+    const Index same = previous_by_vertex.find(c.vertex, c.vblock, c.eblock);
     const Contact* p = same >= 0 ? &previous[static_cast<std::size_t>(same)] : nullptr;
     const bool swapped = !p && (p = swapped_corner(previous, previous_by_vertex, c)) != nullptr;
     if (!p) continue;

@@ -208,19 +208,27 @@ void Engine::block_terms(double dt) {
 void Engine::assemble() {
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
   const auto np = static_cast<std::int64_t>(set_.pairs.size());
+  const auto nc = static_cast<std::int64_t>(set_.contacts.size());
   const auto& cs = set_.contacts;
   matrix_.diag.resize(static_cast<std::size_t>(n));
   matrix_.off.resize(static_cast<std::size_t>(np));
+  matrix_.off_nonzero.resize(static_cast<std::size_t>(np));
   rhs_.resize(static_cast<std::size_t>(n));
+  // Coefficients of every contact once, in list order: the gathers below read these small
+  // records and pass over open contacts without loading the contacts themselves.
+  coefficients_.resize(static_cast<std::size_t>(nc));
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < nc; ++k) coefficients_[k] = contact_coefficients(cs[k]);
+  auto inactive = [](const ContactCoefficients& q) { return q.kn_eff == 0.0 && q.ks_eff == 0.0; };
   // Diagonal blocks and loads: gathered per block from its sorted contact list (no races).
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     Mat6 k = base_diag_[i];
     Vec6 f = base_rhs_[i];
     for (Index m = set_.block_contact_offsets[i]; m < set_.block_contact_offsets[i + 1]; ++m) {
+      const ContactCoefficients& q = coefficients_[set_.block_contacts[m]];
+      if (inactive(q) && q.fs_rhs == 0.0) continue;
       const Contact& c = cs[set_.block_contacts[m]];
-      const ContactCoefficients q = contact_coefficients(c);
-      if (q.kn_eff == 0.0 && q.ks_eff == 0.0 && q.fs_rhs == 0.0) continue;
       const Vec6& a = c.vblock == i ? c.e : c.g;
       const Vec6& b = c.vblock == i ? c.es : c.gs;
       if (q.kn_eff != 0.0) k.noalias() += q.kn_eff * a * a.transpose();
@@ -235,9 +243,12 @@ void Engine::assemble() {
   for (std::int64_t p = 0; p < np; ++p) {
     const ContactPair& pr = set_.pairs[p];
     Mat6 k = Mat6::Zero();
+    bool nonzero = false;
     for (Index m = pr.first; m < pr.last; ++m) {
+      const ContactCoefficients& q = coefficients_[m];
+      if (inactive(q)) continue;
+      nonzero = true;
       const Contact& c = cs[m];
-      const ContactCoefficients q = contact_coefficients(c);
       const bool v_is_a = c.vblock == pr.a;
       const Vec6& na = v_is_a ? c.e : c.g;
       const Vec6& nb = v_is_a ? c.g : c.e;
@@ -246,7 +257,8 @@ void Engine::assemble() {
       if (q.kn_eff != 0.0) k.noalias() += q.kn_eff * na * nb.transpose();
       if (q.ks_eff != 0.0) k.noalias() += q.ks_eff * sa * sb.transpose();
     }
-    matrix_.off[p] = k;
+    matrix_.off_nonzero[p] = nonzero ? 1 : 0;
+    if (nonzero) matrix_.off[p] = k;
   }
 }
 

@@ -21,6 +21,7 @@ void multiply(const BlockMatrix& k, const ContactSet& t, const BlockVector& x, B
     Vec6 acc = k.diag[i] * x[i];
     for (Index m = t.block_pair_offsets[i]; m < t.block_pair_offsets[i + 1]; ++m) {
       const Index p = t.block_pairs[m];
+      if (!k.off_nonzero[p]) continue;
       const ContactPair& pr = t.pairs[p];
       if (pr.a == i)
         acc.noalias() += k.off[p] * x[pr.b];
@@ -99,10 +100,13 @@ SolveReport solve_direct(const BlockMatrix& k, const ContactSet& t, const BlockV
       for (int c = 0; c < 6; ++c) trip.emplace_back(6 * i + r, 6 * i + c, k.diag[static_cast<std::size_t>(i)](r, c));
   for (std::size_t p = 0; p < t.pairs.size(); ++p) {
     const Eigen::Index a = t.pairs[p].a, bb = t.pairs[p].b;
+    // Zero blocks stay in the pattern: the fill-reducing ordering depends on it.
+    const bool nonzero = k.off_nonzero[p] != 0;
     for (int r = 0; r < 6; ++r)
       for (int c = 0; c < 6; ++c) {
-        trip.emplace_back(6 * a + r, 6 * bb + c, k.off[p](r, c));
-        trip.emplace_back(6 * bb + c, 6 * a + r, k.off[p](r, c));
+        const double value = nonzero ? k.off[p](r, c) : 0.0;
+        trip.emplace_back(6 * a + r, 6 * bb + c, value);
+        trip.emplace_back(6 * bb + c, 6 * a + r, value);
       }
   }
   Eigen::SparseMatrix<double> m(6 * nb, 6 * nb);

@@ -108,9 +108,10 @@ struct ContactCandidate {
 struct ContactsByVertex {
   std::vector<Index> offsets;   // per vertex, into `contacts`
   std::vector<Index> contacts;  // list indices, ascending for each vertex
+  std::vector<Index> low, high;  // their block pairs (a search reads these, not the contacts)
   void build(const std::vector<Contact>& list, std::size_t vertex_count);
-  /// Index in `list` of the contact of vertex v in the block pair {p, q}, or -1.
-  Index find(const std::vector<Contact>& list, Index v, Index p, Index q) const;
+  /// Index in the list of the contact of vertex v in the block pair {p, q}, or -1.
+  Index find(Index v, Index p, Index q) const;
 };
 
 /// Reusable scratch space of the broad phase (avoids reallocation every step).

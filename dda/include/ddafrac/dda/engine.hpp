@@ -9,6 +9,7 @@
 
 #include "ddafrac/dda/block_system.hpp"
 #include "ddafrac/dda/contact.hpp"
+#include "ddafrac/dda/contact_mechanics.hpp"
 #include "ddafrac/dda/energy_ledger.hpp"
 #include "ddafrac/dda/linear_system.hpp"
 #include "ddafrac/meshes/mesh.hpp"
@@ -187,6 +188,7 @@ class Engine {
   ContactSet set_;
   DetectionWorkspace detection_;
   BlockMatrix matrix_;
+  std::vector<ContactCoefficients> coefficients_;  // per contact, of the latest assembly
   BlockVector base_rhs_, rhs_, d_;
   std::vector<Mat6> base_diag_;
   std::vector<double> saved_slide_sign_;

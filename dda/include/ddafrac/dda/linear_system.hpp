@@ -5,6 +5,7 @@
 // Every reduction runs over fixed-size chunks summed in order: results do not depend on the
 // number of OpenMP threads.
 
+#include <cstdint>
 #include <vector>
 
 #include "ddafrac/dda/contact.hpp"
@@ -14,7 +15,11 @@ namespace ddafrac::dda {
 
 struct BlockMatrix {
   std::vector<Mat6> diag;  // per block
-  std::vector<Mat6> off;   // per ContactSet::pairs entry, K_ab with a < b
+  std::vector<Mat6> off;   // per ContactSet::pairs entry, K_ab with a < b, where off_nonzero
+  // Whether a pair's K_ab is nonzero (some contact of the pair closed); where it is 0 the pair's
+  // off block is zero and left unwritten, and the product skips it (most pairs of an intact body
+  // are open contacts at shared mesh nodes).
+  std::vector<std::uint8_t> off_nonzero;
 };
 
 using BlockVector = std::vector<Vec6>;
