@@ -199,7 +199,7 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
   for (int side = 0; side < 2; ++side) {
     const Index p = side == 0 ? a : b;  // vertex block
     const Index q = side == 0 ? b : a;  // edge block
-    const double bx0 = ws.xmin[q], bx1 = ws.xmax[q], by0 = ws.ymin[q], by1 = ws.ymax[q];
+    const double bx0 = ws.boxes.xmin[q], bx1 = ws.boxes.xmax[q], by0 = ws.boxes.ymin[q], by1 = ws.boxes.ymax[q];
     for (Index v = s.begin(p); v < s.end(p); ++v) {
       if (skipped(p, v) || node_copy(v)) continue;
       const double px = w.x(v), py = w.y(v);
@@ -311,19 +311,17 @@ Index ContactsByVertex::find(Index v, Index p, Index q) const {
   return -1;
 }
 
-std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams& prm,
-                                     DetectionWorkspace& work, const std::vector<Contact>& previous) {
+namespace {
+
+/// Axis-aligned boxes of the blocks grown by `margin` on every side.
+void grow_boxes(const BlockSystem& s, double margin, BlockBoxes& box) {
   const std::size_t n = s.block_count();
-  const auto ni = static_cast<std::int64_t>(n);
-  std::vector<Contact> result;
-  if (n == 0) return result;
-  const double half = 0.5 * prm.search_distance;
-  work.xmin.resize(n);
-  work.xmax.resize(n);
-  work.ymin.resize(n);
-  work.ymax.resize(n);
+  box.xmin.resize(n);
+  box.xmax.resize(n);
+  box.ymin.resize(n);
+  box.ymax.resize(n);
 #pragma omp parallel for schedule(static)
-  for (std::int64_t b = 0; b < ni; ++b) {
+  for (std::int64_t b = 0; b < static_cast<std::int64_t>(n); ++b) {
     double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
     for (Index v = s.begin(b); v < s.end(b); ++v) {
       x0 = std::min(x0, s.vx[v]);
@@ -331,19 +329,29 @@ std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams
       y0 = std::min(y0, s.vy[v]);
       y1 = std::max(y1, s.vy[v]);
     }
-    work.xmin[b] = x0 - half;
-    work.xmax[b] = x1 + half;
-    work.ymin[b] = y0 - half;
-    work.ymax[b] = y1 + half;
+    box.xmin[b] = x0 - margin;
+    box.xmax[b] = x1 + margin;
+    box.ymin[b] = y0 - margin;
+    box.ymax[b] = y1 + margin;
   }
-  // Uniform grid: cell = mean block extent, but never more than kMaxCellsPerBlock·N cells.
+}
+
+bool boxes_overlap(const BlockBoxes& box, std::size_t a, std::size_t b) {
+  return !(box.xmin[b] > box.xmax[a] || box.xmax[b] < box.xmin[a] || box.ymin[b] > box.ymax[a] ||
+           box.ymax[b] < box.ymin[a]);
+}
+
+/// Broad phase: for every block, the blocks after it whose boxes overlap (uniform grid, cell =
+/// mean block extent, never more than kMaxCellsPerBlock·N cells), ascending.
+void overlapping_boxes(const BlockBoxes& box, DetectionWorkspace& work, std::vector<std::vector<Index>>& partners) {
+  const std::size_t n = box.xmin.size();
   double gx0 = INFINITY, gx1 = -INFINITY, gy0 = INFINITY, gy1 = -INFINITY, extent = 0.0;
   for (std::size_t b = 0; b < n; ++b) {
-    gx0 = std::min(gx0, work.xmin[b]);
-    gx1 = std::max(gx1, work.xmax[b]);
-    gy0 = std::min(gy0, work.ymin[b]);
-    gy1 = std::max(gy1, work.ymax[b]);
-    extent += std::max(work.xmax[b] - work.xmin[b], work.ymax[b] - work.ymin[b]);
+    gx0 = std::min(gx0, box.xmin[b]);
+    gx1 = std::max(gx1, box.xmax[b]);
+    gy0 = std::min(gy0, box.ymin[b]);
+    gy1 = std::max(gy1, box.ymax[b]);
+    extent += std::max(box.xmax[b] - box.xmin[b], box.ymax[b] - box.ymin[b]);
   }
   double h = extent / static_cast<double>(n);
   h = std::max(h, std::sqrt((gx1 - gx0) * (gy1 - gy0) / (kMaxCellsPerBlock * static_cast<double>(n))));
@@ -351,10 +359,10 @@ std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams
   const auto gnx = static_cast<std::int64_t>(std::floor((gx1 - gx0) / h)) + 1;
   const auto gny = static_cast<std::int64_t>(std::floor((gy1 - gy0) / h)) + 1;
   auto cell_range = [&](std::size_t b, std::int64_t& i0, std::int64_t& i1, std::int64_t& j0, std::int64_t& j1) {
-    i0 = std::clamp<std::int64_t>(static_cast<std::int64_t>((work.xmin[b] - gx0) / h), 0, gnx - 1);
-    i1 = std::clamp<std::int64_t>(static_cast<std::int64_t>((work.xmax[b] - gx0) / h), 0, gnx - 1);
-    j0 = std::clamp<std::int64_t>(static_cast<std::int64_t>((work.ymin[b] - gy0) / h), 0, gny - 1);
-    j1 = std::clamp<std::int64_t>(static_cast<std::int64_t>((work.ymax[b] - gy0) / h), 0, gny - 1);
+    i0 = std::clamp<std::int64_t>(static_cast<std::int64_t>((box.xmin[b] - gx0) / h), 0, gnx - 1);
+    i1 = std::clamp<std::int64_t>(static_cast<std::int64_t>((box.xmax[b] - gx0) / h), 0, gnx - 1);
+    j0 = std::clamp<std::int64_t>(static_cast<std::int64_t>((box.ymin[b] - gy0) / h), 0, gny - 1);
+    j1 = std::clamp<std::int64_t>(static_cast<std::int64_t>((box.ymax[b] - gy0) / h), 0, gny - 1);
   };
   work.cell_offsets.assign(static_cast<std::size_t>(gnx * gny + 1), 0);
   for (std::size_t b = 0; b < n; ++b) {
@@ -375,33 +383,135 @@ std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams
           work.cell_blocks[static_cast<std::size_t>(fill[static_cast<std::size_t>(j * gnx + i)]++)] = static_cast<Index>(b);
     }
   }
+  partners.resize(n);
+#pragma omp parallel for schedule(dynamic, 32)
+  for (std::int64_t b = 0; b < static_cast<std::int64_t>(n); ++b) {
+    auto& found = partners[b];
+    found.clear();
+    std::int64_t i0, i1, j0, j1;
+    cell_range(static_cast<std::size_t>(b), i0, i1, j0, j1);
+    for (std::int64_t j = j0; j <= j1; ++j)
+      for (std::int64_t i = i0; i <= i1; ++i) {
+        const auto cell = static_cast<std::size_t>(j * gnx + i);
+        for (Index k = work.cell_offsets[cell]; k < work.cell_offsets[cell + 1]; ++k) {
+          const Index o = work.cell_blocks[static_cast<std::size_t>(k)];
+          if (o > b && boxes_overlap(box, static_cast<std::size_t>(b), static_cast<std::size_t>(o))) found.push_back(o);
+        }
+      }
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+  }
+}
+
+/// Distance from (px, py) to the segment (x0, y0)-(x1, y1).
+double point_segment_distance(double px, double py, double x0, double y0, double x1, double y1) {
+  const double dx = x1 - x0, dy = y1 - y0;
+  const double l2 = dx * dx + dy * dy;
+  const double t = l2 > 0.0 ? std::clamp(((px - x0) * dx + (py - y0) * dy) / l2, 0.0, 1.0) : 0.0;
+  return std::hypot(px - x0 - t * dx, py - y0 - t * dy);
+}
+
+/// Do the segments p0-p1 and q0-q1 cross or touch?
+bool segments_cross(double p0x, double p0y, double p1x, double p1y, double q0x, double q0y, double q1x, double q1y) {
+  auto side = [](double ax, double ay, double bx, double by, double cx, double cy) {
+    return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+  };
+  const double d1 = side(q0x, q0y, q1x, q1y, p0x, p0y), d2 = side(q0x, q0y, q1x, q1y, p1x, p1y);
+  const double d3 = side(p0x, p0y, p1x, p1y, q0x, q0y), d4 = side(p0x, p0y, p1x, p1y, q1x, q1y);
+  return d1 * d2 <= 0.0 && d3 * d4 <= 0.0;
+}
+
+/// Can blocks a and b hold a contact while no vertex moves more than half the skin? True when
+/// their boundaries come within `reach` = search distance + skin (a vertex within reach of an
+/// edge of the other block), cross, or one lies inside the other, and for blocks of one body
+/// that share a mesh node (their node contact is kept up to the deepest penetration, which may
+/// exceed the search distance).
+bool may_touch(const View& w, Index a, Index b, double reach) {
+  const BlockSystem& s = w.s;
+  if (node_only_neighbours(s, a, b).first >= 0) return true;
+  for (int side = 0; side < 2; ++side) {
+    const Index p = side == 0 ? a : b, q = side == 0 ? b : a;
+    for (Index v = s.begin(p); v < s.end(p); ++v) {
+      if (inside_block(w, q, w.x(v), w.y(v))) return true;
+      for (Index e0 = s.begin(q); e0 < s.end(q); ++e0) {
+        const Index e1 = w.next(q, e0);
+        if (point_segment_distance(w.x(v), w.y(v), w.x(e0), w.y(e0), w.x(e1), w.y(e1)) <= reach) return true;
+      }
+    }
+  }
+  for (Index v = s.begin(a); v < s.end(a); ++v)
+    for (Index u = s.begin(b); u < s.end(b); ++u)
+      if (segments_cross(w.x(v), w.y(v), w.x(w.next(a, v)), w.y(w.next(a, v)), w.x(u), w.y(u), w.x(w.next(b, u)),
+                         w.y(w.next(b, u))))
+        return true;
+  return false;
+}
+
+/// Largest distance any vertex has moved since the pair list was built.
+double largest_move_since_build(const BlockSystem& s, const DetectionWorkspace& work) {
+  const auto nv = static_cast<std::int64_t>(s.vertex_count());
+  double moved = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : moved)
+  for (std::int64_t v = 0; v < nv; ++v)
+    moved = std::max(moved, std::hypot(s.vx[v] - work.built_x[v], s.vy[v] - work.built_y[v]));
+  return moved;
+}
+
+/// Rebuilds the pair list (Verlet list): pairs that may touch before some vertex moves more
+/// than half the skin, plus every pair joined by an intact virtual joint.
+void build_pair_list(const View& w, const DetectionParams& prm, DetectionWorkspace& work) {
+  const BlockSystem& s = w.s;
+  const double reach = prm.search_distance + prm.skin;
+  grow_boxes(s, 0.5 * reach, work.reach_boxes);
+  overlapping_boxes(work.reach_boxes, work, work.pairs);
+  const auto n = static_cast<std::int64_t>(s.block_count());
+#pragma omp parallel for schedule(dynamic, 32)
+  for (std::int64_t b = 0; b < n; ++b) {
+    auto& list = work.pairs[b];
+    list.erase(std::remove_if(list.begin(), list.end(), [&](Index o) { return !may_touch(w, static_cast<Index>(b), o, reach); }),
+               list.end());
+    if (!s.joints.empty())
+      for (Index k = s.joint_offsets[b]; k < s.joint_offsets[b + 1]; ++k) {
+        const Joint& jt = s.joints[static_cast<std::size_t>(s.joint_of_block[k])];
+        if (!jt.broken && jt.block_a == b) list.push_back(jt.block_b);
+      }
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  work.built_x = s.vx;
+  work.built_y = s.vy;
+  ++work.pair_list_builds;
+}
+
+}  // namespace
+
+std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams& prm,
+                                     DetectionWorkspace& work, const std::vector<Contact>& previous) {
+  const std::size_t n = s.block_count();
+  const auto ni = static_cast<std::int64_t>(n);
+  std::vector<Contact> result;
+  if (n == 0) return result;
+  grow_boxes(s, 0.5 * prm.search_distance, work.boxes);
   work.candidates.resize(n);
   work.found.resize(n);
   work.previous_by_vertex.build(previous, s.vertex_count());
   vertex_data(s, work);
   const View w{s, work, previous};
+  const bool stale = work.pairs.size() != n || work.built_x.size() != s.vertex_count() ||
+                     2.0 * largest_move_since_build(s, work) > prm.skin;
+  if (stale) build_pair_list(w, prm, work);
 #pragma omp parallel
   {
     std::vector<Candidate> best;
     std::vector<char> skip;
 #pragma omp for schedule(dynamic, 32)
     for (std::int64_t b = 0; b < ni; ++b) {
+      // Pairs of the list whose boxes (grown by half the search distance) overlap now, and the
+      // pairs of intact joints, whatever their gap.
       auto& cand = work.candidates[b];
       cand.clear();
-      std::int64_t i0, i1, j0, j1;
-      cell_range(static_cast<std::size_t>(b), i0, i1, j0, j1);
-      for (std::int64_t j = j0; j <= j1; ++j)
-        for (std::int64_t i = i0; i <= i1; ++i) {
-          const auto cell = static_cast<std::size_t>(j * gnx + i);
-          for (Index k = work.cell_offsets[cell]; k < work.cell_offsets[cell + 1]; ++k) {
-            const Index o = work.cell_blocks[static_cast<std::size_t>(k)];
-            if (o <= b) continue;
-            if (work.xmin[o] > work.xmax[b] || work.xmax[o] < work.xmin[b] || work.ymin[o] > work.ymax[b] ||
-                work.ymax[o] < work.ymin[b])
-              continue;
-            cand.push_back(o);
-          }
-        }
+      for (Index o : work.pairs[b])
+        if (boxes_overlap(work.boxes, static_cast<std::size_t>(b), static_cast<std::size_t>(o))) cand.push_back(o);
       if (!s.joints.empty())
         for (Index k = s.joint_offsets[b]; k < s.joint_offsets[b + 1]; ++k) {
           const Joint& jt = s.joints[static_cast<std::size_t>(s.joint_of_block[k])];

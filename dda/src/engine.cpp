@@ -70,6 +70,7 @@ Engine::Engine(scene::Scene scene, const meshes::Mesh& mesh, EngineOptions optio
                                                  : an.max_displacement_ratio * blocks_.model_half_height;
   if (!(allowed_ > 0.0)) throw std::invalid_argument("allowed step displacement must be positive (max_displacement_ratio)");
   options_.detection.search_distance = options_.search_distance_factor * allowed_;
+  options_.detection.skin = options_.pair_list_skin_factor * options_.detection.search_distance;
   double pen = an.penalty;
   if (!(pen > 0.0))
     for (const auto& m : blocks_.materials) pen = std::max(pen, m.young);
@@ -109,6 +110,7 @@ void Engine::trouble(const std::string& what) const {
 
 void Engine::detect() {
   std::vector<Contact> found = detect_contacts(blocks_, options_.detection, detection_, set_.contacts);
+  stats_.pair_list_builds = detection_.pair_list_builds;
   const std::vector<std::uint8_t> carried = transfer_contact_state(set_.contacts, detection_.previous_by_vertex, found, blocks_.joints, blocks_);
   ledger_.total += chunked_sum<StepEnergy>(static_cast<std::int64_t>(carried.size()), [&](std::int64_t k) {
     const Contact& vanished = set_.contacts[k];

@@ -89,6 +89,11 @@ struct ContactSet {
 
 struct DetectionParams {
   double search_distance = 0.0;     // m: vertices farther than this from an edge are ignored
+  // m: margin of the pair list (Verlet list): pairs within search distance + skin are kept, and
+  // the list is rebuilt once some vertex has moved more than half the skin since it was built.
+  // A wider skin rebuilds less often but hands the narrow phase more pairs; the contacts found
+  // do not depend on it.
+  double skin = 0.0;
   double angle_tolerance = 0.0523;  // rad (3°): a vertex wedge may dip this far behind an edge
   double vv_max_gap_angle = 0.2;    // rad: vertex-vertex contact only if the wedges are this close
 };
@@ -114,9 +119,18 @@ struct ContactsByVertex {
   Index find(Index v, Index p, Index q) const;
 };
 
-/// Reusable scratch space of the broad phase (avoids reallocation every step).
+/// Axis-aligned boxes of the blocks, grown by a margin.
+struct BlockBoxes {
+  std::vector<double> xmin, xmax, ymin, ymax;
+};
+
+/// Detection state kept between steps: the pair list and scratch space (no reallocation).
 struct DetectionWorkspace {
-  std::vector<double> xmin, xmax, ymin, ymax;  // per block, expanded by half the search distance
+  BlockBoxes boxes;        // per block, grown by half the search distance
+  BlockBoxes reach_boxes;  // grown by half of search distance + skin (pair-list builds)
+  std::vector<std::vector<Index>> pairs;  // pair list: per block, partner blocks > it, ascending
+  std::vector<double> built_x, built_y;   // vertex positions when the pair list was built
+  long pair_list_builds = 0;
   // Per vertex: unit directions to the previous/next vertex, convexity, interior wedge
   // [start, start + open) in radians, outward normal and length of the edge to the next vertex.
   std::vector<double> ax, ay, bx, by, wedge_start, wedge_open, enx, eny, elen;

@@ -22,6 +22,7 @@ struct EngineOptions {
   bool bond_virtual_joints = true;        // same-body shared edges start as bonded joints
   double anchor_penalty_factor = 100.0;   // fixed/prescribed point springs = factor·penalty (N/m)
   double search_distance_factor = 2.5;    // contact search distance / allowed step displacement
+  double pair_list_skin_factor = 1.0;     // skin of the contact pair list / search distance
   double allowed_displacement = 0.0;      // m; 0 = max_displacement_ratio · half model height
   double dt_cut_factor = 0.3;             // dt ×= this on a failed step
   double dt_grow_factor = 1.2;            // dt ×= this after an easy step, up to dt_max
@@ -105,6 +106,7 @@ struct Statistics {
   // wrecks the run (stability study).
   long missed_contacts = 0;
   double deepest_missed = 0.0;  // m
+  long pair_list_builds = 0;    // contact pair list (Verlet list) builds
   PhaseTimes times;
 };
 
