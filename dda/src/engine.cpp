@@ -207,7 +207,7 @@ void Engine::block_terms(double dt) {
   }
 }
 
-void Engine::assemble() {
+void Engine::assemble(bool whole) {
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
   const auto np = static_cast<std::int64_t>(set_.pairs.size());
   const auto nc = static_cast<std::int64_t>(set_.contacts.size());
@@ -217,17 +217,31 @@ void Engine::assemble() {
   matrix_.off_nonzero.resize(static_cast<std::size_t>(np));
   rhs_.resize(static_cast<std::size_t>(n));
   // Coefficients of every contact once, in list order: the gathers below read these small
-  // records and pass over open contacts without loading the contacts themselves.
+  // records and pass over open contacts without loading the contacts themselves. Within a step
+  // the geometry is fixed, so after the first assembly only the blocks and pairs of contacts
+  // whose coefficients changed (state changes, friction loads) are gathered again — with the
+  // same code, so the matrix is the one a whole assembly would give, bit for bit.
   coefficients_.resize(static_cast<std::size_t>(nc));
+  coefficient_changed_.resize(static_cast<std::size_t>(nc));
 #pragma omp parallel for schedule(static)
-  for (std::int64_t k = 0; k < nc; ++k) coefficients_[k] = contact_coefficients(cs[k]);
+  for (std::int64_t k = 0; k < nc; ++k) {
+    const ContactCoefficients q = contact_coefficients(cs[k]);
+    const ContactCoefficients& old = coefficients_[k];
+    coefficient_changed_[k] = whole || q.kn_eff != old.kn_eff || q.ks_eff != old.ks_eff || q.fn_rhs != old.fn_rhs ||
+                              q.fs_rhs != old.fs_rhs;
+    coefficients_[k] = q;
+  }
   auto inactive = [](const ContactCoefficients& q) { return q.kn_eff == 0.0 && q.ks_eff == 0.0; };
   // Diagonal blocks and loads: gathered per block from its sorted contact list (no races).
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
+    const Index first = set_.block_contact_offsets[i], last = set_.block_contact_offsets[i + 1];
+    if (!whole && std::none_of(set_.block_contacts.data() + first, set_.block_contacts.data() + last,
+                               [&](Index m) { return coefficient_changed_[m] != 0; }))
+      continue;
     Mat6 k = base_diag_[i];
     Vec6 f = base_rhs_[i];
-    for (Index m = set_.block_contact_offsets[i]; m < set_.block_contact_offsets[i + 1]; ++m) {
+    for (Index m = first; m < last; ++m) {
       const ContactCoefficients& q = coefficients_[set_.block_contacts[m]];
       if (inactive(q) && q.fs_rhs == 0.0) continue;
       const Contact& c = cs[set_.block_contacts[m]];
@@ -244,6 +258,9 @@ void Engine::assemble() {
 #pragma omp parallel for schedule(static)
   for (std::int64_t p = 0; p < np; ++p) {
     const ContactPair& pr = set_.pairs[p];
+    if (!whole && std::none_of(coefficient_changed_.data() + pr.first, coefficient_changed_.data() + pr.last,
+                               [](std::uint8_t changed) { return changed != 0; }))
+      continue;
     Mat6 k = Mat6::Zero();
     bool nonzero = false;
     for (Index m = pr.first; m < pr.last; ++m) {
@@ -536,7 +553,7 @@ StepReport Engine::step(double max_dt) {
       ++it;
       {
         Timer t(stats_.times.assembly);
-        assemble();
+        assemble(it == 1);
       }
       SolveReport sr;
       {

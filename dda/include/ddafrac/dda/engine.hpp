@@ -174,7 +174,9 @@ class Engine {
   void detect();
   void start_cohesive(Contact& c) const;
   void block_terms(double dt);
-  void assemble();
+  /// The step's matrix and load vector; `whole` = false re-gathers only what the contacts whose
+  /// coefficients changed since the previous assembly of the step touch.
+  void assemble(bool whole);
   bool judge(int& changed_first);
   void reset_trials();
   StepEnergy block_step_energy(double dt) const;
@@ -191,6 +193,7 @@ class Engine {
   DetectionWorkspace detection_;
   BlockMatrix matrix_;
   std::vector<ContactCoefficients> coefficients_;  // per contact, of the latest assembly
+  std::vector<std::uint8_t> coefficient_changed_;  // per contact, since the assembly before
   BlockVector base_rhs_, rhs_, d_;
   std::vector<Mat6> base_diag_;
   std::vector<double> saved_slide_sign_;
