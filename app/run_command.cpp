@@ -17,6 +17,7 @@
 #include "commands.hpp"
 #include "option_checks.hpp"
 #include "figures.hpp"
+#include "ddafrac/common/thread_governor.hpp"
 #include "ddafrac/dda/run.hpp"
 #include "ddafrac/scene/parse.hpp"
 #include "scene_source.hpp"
@@ -51,6 +52,10 @@ class StopSignalGuard {
   void (*previous_interrupt_)(int) = SIG_DFL;
   void (*previous_terminate_)(int) = SIG_DFL;
 };
+
+/// Wall seconds the thread governor watches the machine before a run, and between re-measures.
+constexpr double kGovernorFirstSample = 0.2;
+constexpr double kGovernorInterval = 2.0;
 
 /// Generated meshes of more blocks than this take long enough to say so first.
 constexpr int kQuietMeshBlocks = 100'000;
@@ -104,6 +109,7 @@ struct RunArguments {
   SceneArguments scene;
   std::string out;
   int threads = 0;
+  bool keep_threads = false;  // no thread governor: exactly --threads whatever the machine's load
   std::string solver;  // empty: the scene's analysis.solver
   long max_steps = 0;
   bool no_vtk = false;
@@ -140,6 +146,15 @@ void run_run(const RunArguments& args) {
   const std::filesystem::path out = output_directory(args.out, scene, "run");
   if (args.threads > 0) omp_set_num_threads(args.threads);
   const int threads = omp_get_max_threads();
+  // Threads only on the cores other processes leave free, re-measured every few seconds
+  // (common/thread_governor.hpp): a busy core turns every barrier of a step into a wait.
+  common::ThreadGovernor governor(threads);
+  if (!args.keep_threads && threads > 1) {
+    const int free_threads = governor.start(kGovernorFirstSample);
+    if (free_threads < threads)
+      fmt::print("other processes keep {} core(s) busy: running on {} thread(s) of {} (--keep-threads to insist)\n",
+                 threads - free_threads, free_threads, threads);
+  }
 
   const auto setup_start = std::chrono::steady_clock::now();
   check_model_size(scene);
@@ -164,6 +179,7 @@ void run_run(const RunArguments& args) {
   ro.vtk = scene.output.vtk && !args.no_vtk;
   if (ro.vtk) check_disk_for_snapshots(scene, engine->blocks().block_count(), out);
   ro.threads = threads;
+  if (!args.keep_threads && threads > 1) ro.between_steps = [&governor] { return governor.update(kGovernorInterval); };
   ro.setup_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
   ro.max_steps = args.max_steps;
   ro.progress_every = tty ? 0.2 : 5.0;
@@ -227,8 +243,12 @@ void register_run_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand("run", "run the DDA simulation of a scene and write its run directory");
   args->scene.add_to(*command);
   command->add_option("--out", args->out, "run directory (default runs/<scene name>/run)");
-  command->add_option("--threads", args->threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
+  command->add_option("--threads", args->threads,
+                      "most OpenMP threads (default: OMP_NUM_THREADS or all cores); fewer while other processes keep "
+                      "cores busy")
       ->check(whole_number(1, kMaxThreads));
+  command->add_flag("--keep-threads", args->keep_threads,
+                    "use exactly --threads even while other processes keep cores busy");
   command->add_option("--solver", args->solver, "linear solver: pcg (block-Jacobi PCG) or direct (sparse LDLT); default: the scene's analysis.solver")
       ->check(CLI::IsMember({"pcg", "direct"}));
   command->add_option("--max-steps", args->max_steps, "stop after this many steps (0: run to the end time)")

@@ -115,6 +115,8 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
                 {"blocks", e.blocks().block_count()},
                 {"virtual_joints", e.blocks().joints.size()}};
   j["threads"] = o.threads;
+  j["threads_fewest"] = r.threads_fewest > 0 ? r.threads_fewest : o.threads;
+  j["thread_count_changes"] = r.thread_count_changes;
   j["solver"] = to_string(e.options().solver.kind);
   j["allowed_step_displacement"] = e.allowed_displacement();
   j["contact_search_distance"] = e.options().detection.search_distance;
@@ -244,6 +246,7 @@ std::size_t remove_previous_run(const fs::path& dir) {
 RunResult run_simulation(Engine& engine, const RunOptions& o) {
   const double t0 = omp_get_wtime();
   RunResult r;
+  int current_threads = 0;  // as returned by o.between_steps
   fs::create_directories(o.out_dir);
   if (o.vtk) fs::create_directories(o.out_dir / "vtk");
   const auto& an = engine.scene().analysis;
@@ -331,6 +334,12 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
         break;
       }
       const double t_out = std::min(end, static_cast<double>(next_output) * interval);
+      if (o.between_steps) {
+        const int threads = o.between_steps();
+        if (r.threads_fewest > 0 && threads != current_threads) ++r.thread_count_changes;
+        current_threads = threads;
+        r.threads_fewest = r.threads_fewest > 0 ? std::min(r.threads_fewest, threads) : threads;
+      }
       const StepReport rep = engine.step(t_out - engine.time());
       check_finite(rep);
       last = rep;

@@ -28,6 +28,10 @@ struct Progress {
 struct RunOptions {
   std::filesystem::path out_dir;
   int threads = 1;          // recorded in summary.json (the caller sets the OpenMP thread count)
+  /// Called between steps, where the caller may change the OpenMP thread count (results do not
+  /// depend on it); returns the count in use. summary.json records the fewest used and how
+  /// often it changed.
+  std::function<int()> between_steps;
   double setup_wall = 0.0;  // s the caller spent meshing and building the engine (summary.json)
   long max_steps = 0;       // stop after this many steps (0: run to the scene's end time)
   int history_every = 1;    // history.csv row every N accepted steps
@@ -55,6 +59,8 @@ struct RunResult {
   long steps = 0;
   double time = 0.0;
   double wall = 0.0;
+  int threads_fewest = 0;       // smallest thread count used (RunOptions::between_steps)
+  int thread_count_changes = 0;
 };
 
 /// Removes from `dir` the files a previous run_simulation wrote there (summary.json, the CSV
