@@ -132,10 +132,9 @@ void offer(Candidate& slot, const Candidate& c) {
 /// Did the previous step hold vertex v of vblock closed against the edge of eblock that starts
 /// at e0, as a vertex-vertex contact?
 bool was_closed_against(const View& w, Index vblock, Index v, Index eblock, Index e0) {
-  const Index k = w.w.previous_by_vertex.find(v, vblock, eblock);
-  if (k < 0) return false;
-  const Contact& c = w.previous[static_cast<std::size_t>(k)];
-  return c.vertex_vertex && c.eblock == eblock && c.edge0 == e0 && c.state != ContactState::Open;
+  // The contact of v in the pair has v's block as its vertex block, so the edge is eblock's.
+  const Index m = w.w.previous_by_vertex.entry(v, vblock, eblock);
+  return m >= 0 && w.w.previous_by_vertex.closed_corner_edge[static_cast<std::size_t>(m)] == e0;
 }
 
 /// Narrow phase of one block pair a < b; appends at most one contact per vertex.
@@ -294,20 +293,22 @@ void ContactsByVertex::build(const std::vector<Contact>& list, std::size_t verte
   contacts.resize(list.size());
   low.resize(list.size());
   high.resize(list.size());
+  closed_corner_edge.resize(list.size());
   std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
   for (std::size_t k = 0; k < list.size(); ++k) {
     const auto m = static_cast<std::size_t>(fill[static_cast<std::size_t>(list[k].vertex)]++);
     contacts[m] = static_cast<Index>(k);
-    low[m] = list[k].pair_low();
-    high[m] = list[k].pair_high();
+    const Contact& c = list[k];
+    low[m] = c.pair_low();
+    high[m] = c.pair_high();
+    closed_corner_edge[m] = c.vertex_vertex && c.state != ContactState::Open ? c.edge0 : -1;
   }
 }
 
-Index ContactsByVertex::find(Index v, Index p, Index q) const {
+Index ContactsByVertex::entry(Index v, Index p, Index q) const {
   const Index lo = std::min(p, q), hi = std::max(p, q);
   for (Index m = offsets[static_cast<std::size_t>(v)]; m < offsets[static_cast<std::size_t>(v) + 1]; ++m)
-    if (low[static_cast<std::size_t>(m)] == lo && high[static_cast<std::size_t>(m)] == hi)
-      return contacts[static_cast<std::size_t>(m)];
+    if (low[static_cast<std::size_t>(m)] == lo && high[static_cast<std::size_t>(m)] == hi) return m;
   return -1;
 }
 

@@ -9,6 +9,8 @@ namespace ddafrac::dda {
 void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem& blocks,
                                const scene::Scene& scene) {
   const auto n = static_cast<std::int64_t>(contacts.size());
+  std::vector<double> tan_phi;  // per joint set
+  for (const scene::JointSet& js : scene.joint_sets) tan_phi.push_back(std::tan(js.friction_angle));
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < n; ++k) {
     Contact& c = contacts[k];
@@ -21,7 +23,7 @@ void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem
     const scene::JointSet& js = scene.joint_sets[static_cast<std::size_t>(set)];
     c.kn = js.normal_stiffness > 0.0 ? js.normal_stiffness : scene.analysis.penalty;
     c.ks = js.shear_stiffness;
-    c.tan_phi = std::tan(js.friction_angle);
+    c.tan_phi = tan_phi[static_cast<std::size_t>(set)];
     c.cohesion = js.cohesion;
     c.tensile_strength = js.tensile_strength;
     // Two corners meeting at a shared mesh node have no face for friction to act along (the

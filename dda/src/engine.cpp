@@ -648,11 +648,21 @@ StepReport Engine::step(double max_dt) {
   stats_.open_close_total += rep.open_close;
   stats_.open_close_max = std::max(stats_.open_close_max, rep.open_close);
   rep.contacts = set_.contacts.size();
-  for (const Contact& c : set_.contacts) {
-    if (c.state == ContactState::Open) continue;
-    ++rep.closed;
-    if (c.state == ContactState::Sliding) ++rep.sliding;
-    rep.max_penetration = std::max(rep.max_penetration, -c.d_iter);
+  {
+    const auto nc = static_cast<std::int64_t>(set_.contacts.size());
+    std::size_t closed = 0, sliding = 0;
+    double deepest = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : closed, sliding) reduction(max : deepest)
+    for (std::int64_t k = 0; k < nc; ++k) {
+      const Contact& c = set_.contacts[k];
+      if (c.state == ContactState::Open) continue;
+      ++closed;
+      if (c.state == ContactState::Sliding) ++sliding;
+      deepest = std::max(deepest, -c.d_iter);
+    }
+    rep.closed = closed;
+    rep.sliding = sliding;
+    rep.max_penetration = deepest;
   }
   stats_.max_penetration = std::max(stats_.max_penetration, rep.max_penetration);
   {

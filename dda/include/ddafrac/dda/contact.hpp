@@ -113,10 +113,17 @@ struct ContactCandidate {
 struct ContactsByVertex {
   std::vector<Index> offsets;   // per vertex, into `contacts`
   std::vector<Index> contacts;  // list indices, ascending for each vertex
-  std::vector<Index> low, high;  // their block pairs (a search reads these, not the contacts)
+  // Per entry, so that a search reads these and not the contacts: the block pair, and for a
+  // closed vertex-vertex contact the first vertex of its reference edge (-1 otherwise).
+  std::vector<Index> low, high, closed_corner_edge;
   void build(const std::vector<Contact>& list, std::size_t vertex_count);
+  /// Entry (index into `contacts`) of vertex v's contact in the block pair {p, q}, or -1.
+  Index entry(Index v, Index p, Index q) const;
   /// Index in the list of the contact of vertex v in the block pair {p, q}, or -1.
-  Index find(Index v, Index p, Index q) const;
+  Index find(Index v, Index p, Index q) const {
+    const Index m = entry(v, p, q);
+    return m < 0 ? -1 : contacts[static_cast<std::size_t>(m)];
+  }
 };
 
 /// Axis-aligned boxes of the blocks, grown by a margin.
