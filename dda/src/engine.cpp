@@ -215,6 +215,7 @@ void Engine::assemble(bool whole) {
   matrix_.diag.resize(static_cast<std::size_t>(n));
   matrix_.off.resize(static_cast<std::size_t>(np));
   matrix_.off_nonzero.resize(static_cast<std::size_t>(np));
+  matrix_.diag_changed.resize(static_cast<std::size_t>(n));
   rhs_.resize(static_cast<std::size_t>(n));
   // Coefficients of every contact once, in list order: the gathers below read these small
   // records and pass over open contacts without loading the contacts themselves. Within a step
@@ -236,9 +237,10 @@ void Engine::assemble(bool whole) {
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     const Index first = set_.block_contact_offsets[i], last = set_.block_contact_offsets[i + 1];
-    if (!whole && std::none_of(set_.block_contacts.data() + first, set_.block_contacts.data() + last,
-                               [&](Index m) { return coefficient_changed_[m] != 0; }))
-      continue;
+    const bool changed = whole || std::any_of(set_.block_contacts.data() + first, set_.block_contacts.data() + last,
+                                              [&](Index m) { return coefficient_changed_[m] != 0; });
+    matrix_.diag_changed[i] = changed ? 1 : 0;
+    if (!changed) continue;
     Mat6 k = base_diag_[i];
     Vec6 f = base_rhs_[i];
     for (Index m = first; m < last; ++m) {

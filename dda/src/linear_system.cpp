@@ -46,9 +46,11 @@ SolveReport solve_pcg(const BlockMatrix& k, const ContactSet& t, const BlockVect
   w.z.resize(b.size());
   w.p.resize(b.size());
   w.q.resize(b.size());
+  const bool all_changed = w.preconditioner.size() != b.size() || k.diag_changed.size() != b.size();
   w.preconditioner.resize(b.size());
 #pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) w.preconditioner[i] = k.diag[i].llt().solve(Mat6::Identity());
+  for (std::int64_t i = 0; i < n; ++i)
+    if (all_changed || k.diag_changed[i]) w.preconditioner[i] = k.diag[i].llt().solve(Mat6::Identity());
   const double bnorm = std::sqrt(dot(b, b));
   if (bnorm == 0.0) {
     std::fill(x.begin(), x.end(), Vec6::Zero());

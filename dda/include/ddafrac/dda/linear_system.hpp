@@ -20,6 +20,9 @@ struct BlockMatrix {
   // off block is zero and left unwritten, and the product skips it (most pairs of an intact body
   // are open contacts at shared mesh nodes).
   std::vector<std::uint8_t> off_nonzero;
+  // Whether a diagonal block changed since the previous solve (the assembly sets it): the
+  // preconditioner inverts only those again. Empty: all changed.
+  std::vector<std::uint8_t> diag_changed;
 };
 
 using BlockVector = std::vector<Vec6>;
