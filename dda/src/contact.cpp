@@ -486,12 +486,14 @@ void build_pair_list(const View& w, const DetectionParams& prm, DetectionWorkspa
 
 }  // namespace
 
-std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams& prm,
-                                     DetectionWorkspace& work, const std::vector<Contact>& previous) {
+void detect_contacts(const BlockSystem& s, const DetectionParams& prm, DetectionWorkspace& work,
+                     const std::vector<Contact>& previous, std::vector<Contact>& result) {
   const std::size_t n = s.block_count();
   const auto ni = static_cast<std::int64_t>(n);
-  std::vector<Contact> result;
-  if (n == 0) return result;
+  if (n == 0) {
+    result.clear();
+    return;
+  }
   grow_boxes(s, 0.5 * prm.search_distance, work.boxes);
   work.candidates.resize(n);
   work.found.resize(n);
@@ -531,7 +533,6 @@ std::vector<Contact> detect_contacts(const BlockSystem& s, const DetectionParams
 #pragma omp parallel for schedule(static)
   for (std::int64_t b = 0; b < ni; ++b)
     for (std::size_t k = 0; k < work.found[b].size(); ++k) result[start[b] + k] = make_contact(w, work.found[b][k]);
-  return result;
 }
 
 namespace {

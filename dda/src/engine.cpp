@@ -109,7 +109,8 @@ void Engine::trouble(const std::string& what) const {
 }
 
 void Engine::detect() {
-  std::vector<Contact> found = detect_contacts(blocks_, options_.detection, detection_, set_.contacts);
+  std::vector<Contact>& found = spare_contacts_;  // the list of the step before last: storage reused
+  detect_contacts(blocks_, options_.detection, detection_, set_.contacts, found);
   stats_.pair_list_builds = detection_.pair_list_builds;
   const std::vector<std::uint8_t> carried = transfer_contact_state(set_.contacts, detection_.previous_by_vertex, found, blocks_.joints, blocks_);
   ledger_.total += chunked_sum<StepEnergy>(static_cast<std::int64_t>(carried.size()), [&](std::int64_t k) {
@@ -117,7 +118,7 @@ void Engine::detect() {
     return carried[k] ? StepEnergy{} : released_energy(vanished, vanished.bonded(blocks_.joints));
   });
   assign_contact_properties(found, blocks_, scene_);
-  set_.contacts = std::move(found);
+  std::swap(set_.contacts, found);
   build_contact_topology(set_, blocks_.block_count());
   const auto nc = static_cast<std::int64_t>(set_.contacts.size());
   saved_slide_sign_.resize(set_.contacts.size());

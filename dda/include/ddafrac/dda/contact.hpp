@@ -153,8 +153,9 @@ struct DetectionWorkspace {
 /// vertex-vertex corner keeps; work.previous_by_vertex is left indexing them for
 /// transfer_contact_state. Deterministic: the output is sorted by (low block, high block,
 /// vertex) whatever the threads.
-std::vector<Contact> detect_contacts(const BlockSystem& blocks, const DetectionParams& params,
-                                     DetectionWorkspace& work, const std::vector<Contact>& previous);
+/// `found` is overwritten; its storage is reused (pass the list of the step before last).
+void detect_contacts(const BlockSystem& blocks, const DetectionParams& params, DetectionWorkspace& work,
+                     const std::vector<Contact>& previous, std::vector<Contact>& found);
 
 /// Carries state (state, reference point, forces, slip, cohesion) from the previous list to contacts of
 /// the same vertex and block pair, or of the same vertex-vertex corner with vertex and edge

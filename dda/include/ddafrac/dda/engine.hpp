@@ -190,6 +190,7 @@ class Engine {
   EngineOptions options_;
   BlockSystem blocks_;
   ContactSet set_;
+  std::vector<Contact> spare_contacts_;  // the previous step's list, refilled by the next detection
   DetectionWorkspace detection_;
   BlockMatrix matrix_;
   std::vector<ContactCoefficients> coefficients_;  // per contact, of the latest assembly
