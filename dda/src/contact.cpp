@@ -458,6 +458,18 @@ double largest_move_since_build(const BlockSystem& s, const DetectionWorkspace& 
   return moved;
 }
 
+/// Adds to a partner list of block b the blocks after it joined to it by an intact virtual joint
+/// (paired whatever their gap), then sorts it and drops repeats.
+void add_joint_partners(const BlockSystem& s, Index b, std::vector<Index>& partners) {
+  if (!s.joints.empty())
+    for (Index k = s.joint_offsets[b]; k < s.joint_offsets[b + 1]; ++k) {
+      const Joint& jt = s.joints[static_cast<std::size_t>(s.joint_of_block[k])];
+      if (!jt.broken && jt.block_a == b) partners.push_back(jt.block_b);
+    }
+  std::sort(partners.begin(), partners.end());
+  partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
+}
+
 /// Rebuilds the pair list (Verlet list): pairs that may touch before some vertex moves more
 /// than half the skin, plus every pair joined by an intact virtual joint.
 void build_pair_list(const View& w, const DetectionParams& prm, DetectionWorkspace& work) {
@@ -471,13 +483,7 @@ void build_pair_list(const View& w, const DetectionParams& prm, DetectionWorkspa
     auto& list = work.pairs[b];
     list.erase(std::remove_if(list.begin(), list.end(), [&](Index o) { return !may_touch(w, static_cast<Index>(b), o, reach); }),
                list.end());
-    if (!s.joints.empty())
-      for (Index k = s.joint_offsets[b]; k < s.joint_offsets[b + 1]; ++k) {
-        const Joint& jt = s.joints[static_cast<std::size_t>(s.joint_of_block[k])];
-        if (!jt.broken && jt.block_a == b) list.push_back(jt.block_b);
-      }
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
+    add_joint_partners(s, static_cast<Index>(b), list);
   }
   work.built_x = s.vx;
   work.built_y = s.vy;
@@ -515,13 +521,7 @@ void detect_contacts(const BlockSystem& s, const DetectionParams& prm, Detection
       cand.clear();
       for (Index o : work.pairs[b])
         if (boxes_overlap(work.boxes, static_cast<std::size_t>(b), static_cast<std::size_t>(o))) cand.push_back(o);
-      if (!s.joints.empty())
-        for (Index k = s.joint_offsets[b]; k < s.joint_offsets[b + 1]; ++k) {
-          const Joint& jt = s.joints[static_cast<std::size_t>(s.joint_of_block[k])];
-          if (!jt.broken && jt.block_a == b) cand.push_back(jt.block_b);
-        }
-      std::sort(cand.begin(), cand.end());
-      cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+      add_joint_partners(s, static_cast<Index>(b), cand);
       auto& found = work.found[b];
       found.clear();
       for (Index o : cand) narrow_phase(w, static_cast<Index>(b), o, prm, best, skip, found);
