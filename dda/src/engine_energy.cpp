@@ -1,0 +1,81 @@
+// Engine: energies stored by the blocks and contacts, and the block terms of a step's energy ledger.
+#include "ddafrac/dda/engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "ddafrac/dda/contact_mechanics.hpp"
+#include "ddafrac/dda/geometry.hpp"
+#include "deterministic_sum.hpp"
+
+namespace ddafrac::dda {
+
+using detail::chunked_sum;
+
+StepEnergy Engine::block_step_energy(double dt) const {
+  // Terms of the linear system of the step (block_terms): ½·Δεᵀ·A·E·Δε of the elasticity,
+  // ½·p·|T·D|² of the anchors, the damping force −η·M·V1, and in static mode the kinetic energy
+  // ½·V1ᵀ·M·V1 thrown away with the velocities; the work of gravity, point loads and moving
+  // anchor targets.
+  const auto& an = scene_.analysis;
+  const double t0 = time_, t1 = time_ + dt;
+  const bool dynamic = active_.dynamic;
+  const double eta = options_.mass_damping;
+  return chunked_sum<StepEnergy>(static_cast<std::int64_t>(blocks_.block_count()), [&](std::int64_t i) {
+    StepEnergy e;
+    const Vec6& d = d_[i];
+    const PolygonIntegrals& g = blocks_.geometry[i];
+    const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
+    const Vec3 de = d.segment<3>(3);
+    e.numerical += 0.5 * g.area * de.dot(mat.elastic * de);
+    const Mat6 m = (blocks_.mass[i] / g.area) * mass_integral(g);
+    const Vec6 v1 = dynamic ? Vec6(2.0 / dt * d - blocks_.velocity[i]) : Vec6(2.0 / dt * d);
+    e.numerical += eta * v1.dot(m * d);
+    if (!dynamic) e.numerical += 0.5 * v1.dot(m * v1);
+    e.work_gravity += blocks_.mass[i] * (an.gravity[0] * d[kU] + an.gravity[1] * d[kV]);
+    for (Index l = blocks_.load_offsets[i]; l < blocks_.load_offsets[i + 1]; ++l) {
+      const PointLoad& p = blocks_.loads[static_cast<std::size_t>(l)];
+      e.work_loads += Eigen::Vector2d(p.fx, p.fy).dot(displacement_matrix(g.cx, g.cy, p.x, p.y) * d);
+    }
+    for (Index a = blocks_.anchor_offsets[i]; a < blocks_.anchor_offsets[i + 1]; ++a) {
+      const Anchor& p = blocks_.anchors[static_cast<std::size_t>(a)];
+      e.numerical += 0.5 * anchor_penalty_ * (displacement_matrix(g.cx, g.cy, p.x, p.y) * d).squaredNorm();
+      const Eigen::Vector2d r0(p.x - p.x_start - p.vx * t0, p.y - p.y_start - p.vy * t0);
+      const Eigen::Vector2d r1(p.x - p.x_start - p.vx * t1, p.y - p.y_start - p.vy * t1);
+      e.work_supports += 0.5 * anchor_penalty_ * (r1.squaredNorm() - r0.squaredNorm());
+    }
+    return e;
+  });
+}
+
+Energies Engine::energies() const {
+  Energies e;
+  const auto n = static_cast<std::int64_t>(blocks_.block_count());
+  e.kinetic = chunked_sum(n, [&](std::int64_t i) {
+    const Vec6& v = blocks_.velocity[i];
+    const PolygonIntegrals& g = blocks_.geometry[i];
+    return 0.5 * (blocks_.mass[i] / g.area) * v.dot(mass_integral(g) * v);
+  });
+  e.kinetic_free = chunked_sum(n, [&](std::int64_t i) {
+    if (blocks_.anchor_offsets[i] != blocks_.anchor_offsets[i + 1]) return 0.0;
+    const Vec6& v = blocks_.velocity[i];
+    const PolygonIntegrals& g = blocks_.geometry[i];
+    return 0.5 * (blocks_.mass[i] / g.area) * v.dot(mass_integral(g) * v);
+  });
+  e.strain = chunked_sum(n, [&](std::int64_t i) {
+    const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
+    const Vec3& s = blocks_.stress[i];
+    return 0.5 * blocks_.geometry[i].area * s.dot(mat.compliance * s);
+  });
+  e.contact = chunked_sum(static_cast<std::int64_t>(set_.contacts.size()),
+                          [&](std::int64_t k) { return contact_energy(set_.contacts[k]).total(); });
+  e.support = chunked_sum(static_cast<std::int64_t>(blocks_.anchors.size()), [&](std::int64_t a) {
+    const Anchor& p = blocks_.anchors[static_cast<std::size_t>(a)];
+    const Eigen::Vector2d r(p.x - p.x_start - p.vx * time_, p.y - p.y_start - p.vy * time_);
+    return 0.5 * anchor_penalty_ * r.squaredNorm();
+  });
+  return e;
+}
+
+}  // namespace ddafrac::dda
