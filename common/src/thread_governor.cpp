@@ -80,33 +80,26 @@ int threads_for(double others, int cores, int most, int current) {
 
 ThreadGovernor::ThreadGovernor(int most)
     : most_(std::max(1, most)), cores_(std::max(1, omp_get_num_procs())), machine_cpus_(machine_cpus()) {
-  threads_ = fewest_ = most_;
+  threads_ = most_;
 }
 
 void ThreadGovernor::apply(int threads) {
-  if (threads != threads_) ++changes_;
   threads_ = threads;
-  fewest_ = std::min(fewest_, threads);
   omp_set_num_threads(threads);
 }
 
 int ThreadGovernor::start(double sample_seconds) {
   last_ = read_cpu_times();
-  last_wall_ = wall_seconds();
-  if (!last_) {
+  if (last_) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(sample_seconds));
+    const std::optional<CpuTimes> now = read_cpu_times();
+    const double others = now ? busy_cores_of_others(*last_, *now, machine_cpus_) : 0.0;
+    last_ = now;
+    apply(threads_for(others, cores_, most_, most_));
+  } else {
     apply(most_);
-    return threads_;
   }
-  std::this_thread::sleep_for(std::chrono::duration<double>(sample_seconds));
-  const std::optional<CpuTimes> now = read_cpu_times();
-  const double others = now ? busy_cores_of_others(*last_, *now, machine_cpus_) : 0.0;
-  last_ = now;
   last_wall_ = wall_seconds();
-  threads_ = most_;
-  changes_ = 0;
-  const int chosen = threads_for(others, cores_, most_, most_);
-  threads_ = fewest_ = chosen;
-  omp_set_num_threads(chosen);
   return threads_;
 }
 

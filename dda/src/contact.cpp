@@ -29,7 +29,6 @@ constexpr double kPenetrationEdgeFraction = 0.3;
 struct View {
   const BlockSystem& s;
   const DetectionWorkspace& w;
-  const std::vector<Contact>& previous;  // the previous step's contacts, sorted by (pair, vertex)
   double x(Index v) const { return s.vx[static_cast<std::size_t>(v)]; }
   double y(Index v) const { return s.vy[static_cast<std::size_t>(v)]; }
   Index prev(Index block, Index v) const { return v == s.begin(block) ? s.end(block) - 1 : v - 1; }
@@ -471,7 +470,8 @@ void add_joint_partners(const BlockSystem& s, Index b, std::vector<Index>& partn
 }
 
 /// Rebuilds the pair list (Verlet list): pairs that may touch before some vertex moves more
-/// than half the skin, plus every pair joined by an intact virtual joint.
+/// than half the skin. (Pairs joined by an intact virtual joint are added at every step,
+/// whatever their gap.)
 void build_pair_list(const View& w, const DetectionParams& prm, DetectionWorkspace& work) {
   const BlockSystem& s = w.s;
   const double reach = prm.search_distance + prm.skin;
@@ -483,7 +483,6 @@ void build_pair_list(const View& w, const DetectionParams& prm, DetectionWorkspa
     auto& list = work.pairs[b];
     list.erase(std::remove_if(list.begin(), list.end(), [&](Index o) { return !may_touch(w, static_cast<Index>(b), o, reach); }),
                list.end());
-    add_joint_partners(s, static_cast<Index>(b), list);
   }
   work.built_x = s.vx;
   work.built_y = s.vy;
@@ -505,7 +504,7 @@ void detect_contacts(const BlockSystem& s, const DetectionParams& prm, Detection
   work.found.resize(n);
   work.previous_by_vertex.build(previous, s.vertex_count());
   vertex_data(s, work);
-  const View w{s, work, previous};
+  const View w{s, work};
   const bool stale = work.pairs.size() != n || work.built_x.size() != s.vertex_count() ||
                      2.0 * largest_move_since_build(s, work) > prm.skin;
   if (stale) build_pair_list(w, prm, work);

@@ -47,14 +47,12 @@ class ThreadGovernor {
   int update(double interval_seconds);
 
   int threads() const { return threads_; }
-  int fewest() const { return fewest_; }     // smallest count used so far
-  int changes() const { return changes_; }   // how many times the count changed
 
  private:
   void apply(int threads);
 
   int most_ = 1, cores_ = 1, machine_cpus_ = 1;
-  int threads_ = 1, fewest_ = 1, changes_ = 0;
+  int threads_ = 1;
   std::optional<CpuTimes> last_;
   double last_wall_ = 0.0;
 };
