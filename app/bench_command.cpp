@@ -37,7 +37,7 @@ struct BenchArguments {
   std::vector<int> threads{1, 2};
   int steps = 50;
   int warmup = 5;
-  std::string solver = "pcg";
+  std::string solver;  // empty: the scene's analysis.solver (pcg for the synthetic disc)
   std::string out = "runs/bench";
   bool ceiling = true;  // measure the machine's own parallel ceiling first
 };
@@ -61,7 +61,7 @@ struct BenchCase {
 BenchRow bench_one(const BenchCase& bc, int threads, const BenchArguments& a) {
   omp_set_num_threads(threads);
   dda::EngineOptions o;
-  o.solver.kind = a.solver == "direct" ? dda::SolverKind::Direct : dda::SolverKind::Pcg;
+  o.solver.kind = wants_direct_solver(a.solver, bc.scene) ? dda::SolverKind::Direct : dda::SolverKind::Pcg;
   dda::Engine e(bc.scene, bc.mesh, o);
   for (int k = 0; k < a.warmup; ++k) e.step();
   const dda::Statistics before = e.statistics();
@@ -122,7 +122,7 @@ void run_bench(const BenchArguments& a) {
   }
   fmt::print("{}, {} steps after {} warm-up steps, solver {}, median of {}; µs per block-step\n",
              a.scene_file.empty() ? std::string("glued disc impacting a plate") : a.scene_file, a.steps, a.warmup,
-             a.solver, a.repeat);
+             a.solver.empty() ? std::string("of the scene") : a.solver, a.repeat);
   fmt::print("{:>7} {:>8} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>7} {:>8}\n", "blocks", "contacts",
              "threads", "total", "detect", "assemble", "solve", "judge", "fracture", "update", "cg/it", "speedup");
   for (const BenchCase& bc : bench_cases(a)) {
@@ -181,14 +181,14 @@ void register_bench_command(CLI::App& app) {
       ->check(whole_number(kSmallestRingDisc, kMaxBenchBlocks));
   command->add_option("--scene", args->scene_file, "bench this scene file's first --steps steps instead of the synthetic disc")
       ->check(CLI::ExistingFile);
-  command->add_option("--set", args->overrides, "override a value of the --scene scene, e.g. --set contacts.penalty=3.9e12")
+  command->add_option("--set", args->overrides, "override a value of the --scene scene, e.g. --set analysis.penalty=1.053e12")
       ->type_name("KEY=VALUE");
   command->add_option("--repeat", args->repeat, "runs per case; the median by total time is reported (default 1)")
       ->check(whole_number(1));
   command->add_option("--threads", args->threads, "thread counts (default 1 2)")->delimiter(',')->check(whole_number(1, kMaxThreads));
   command->add_option("--steps", args->steps, "timed steps per case")->check(whole_number(1));
   command->add_option("--warmup", args->warmup, "untimed steps first")->check(whole_number(0));
-  command->add_option("--solver", args->solver, "pcg or direct")->check(CLI::IsMember({"pcg", "direct"}));
+  command->add_option("--solver", args->solver, "pcg or direct (default: the scene's analysis.solver)")->check(CLI::IsMember({"pcg", "direct"}));
   command->add_option("--out", args->out, "directory for bench.json and bench.csv");
   command->add_flag("!--no-ceiling", args->ceiling,
                     "skip the machine's own speed-up ceiling (compute- and memory-bound kernels, ~3 s)");

@@ -160,8 +160,7 @@ void run_run(const RunArguments& args) {
   check_model_size(scene);
   const meshes::Mesh mesh = dda_mesh(scene);
   dda::EngineOptions options;
-  const bool direct = args.solver.empty() ? scene.analysis.solver == scene::Solver::Direct : args.solver == "direct";
-  options.solver.kind = direct ? dda::SolverKind::Direct : dda::SolverKind::Pcg;
+  options.solver.kind = wants_direct_solver(args.solver, scene) ? dda::SolverKind::Direct : dda::SolverKind::Pcg;
   std::unique_ptr<dda::Engine> engine;
   try {
     engine = std::make_unique<dda::Engine>(scene, mesh, options);

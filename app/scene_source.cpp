@@ -58,6 +58,10 @@ scene::Scene SceneArguments::load() const {
   }
 }
 
+bool wants_direct_solver(const std::string& solver_option, const scene::Scene& scene) {
+  return solver_option.empty() ? scene.analysis.solver == scene::Solver::Direct : solver_option == "direct";
+}
+
 meshes::Mesh dda_mesh(const scene::Scene& scene, meshes::QualityReport* quality) {
   try {
     if (const auto* file = std::get_if<meshes::MshFile>(&scene.geometry)) {

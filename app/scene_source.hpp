@@ -27,6 +27,10 @@ struct SceneArguments {
   scene::Scene load() const;
 };
 
+/// Whether a command runs the direct solver: its --solver value ("pcg" or "direct") if given,
+/// else the scene's analysis.solver.
+bool wants_direct_solver(const std::string& solver_option, const scene::Scene& scene);
+
 /// The scene's DDA mesh: generated, or read from the user's .msh and checked against the
 /// scene's bodies. Problems become a CommandFailed naming the scene file.
 meshes::Mesh dda_mesh(const scene::Scene& scene, meshes::QualityReport* quality = nullptr);
