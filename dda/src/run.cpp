@@ -1,68 +1,20 @@
 #include "ddafrac/dda/run.hpp"
 
 #include "ddafrac/common/whole_file.hpp"
+#include "run_documents.hpp"
 
 #include <fmt/core.h>
 #include <omp.h>
 
-#include <cmath>
 #include <algorithm>
-#include <nlohmann/json.hpp>
+#include <cmath>
 #include <regex>
-#include <sstream>
-#include <stdexcept>
 
 namespace ddafrac::dda {
 
 namespace fs = std::filesystem;
 
 namespace {
-/// Relative slack when comparing simulated times with output times.
-constexpr double kTimeSlack = 1e-9;
-
-const char* mode_name(scene::Mode m) { return m == scene::Mode::Dynamic ? "dynamic" : "static"; }
-const char* plane_name(scene::PlaneModel p) { return p == scene::PlaneModel::Stress ? "stress" : "strain"; }
-
-std::string history_header() {
-  return "step,t,dt,open_close_iterations,cg_iterations,dt_cuts,kinetic_energy,strain_energy,contact_energy,"
-         "kinetic_free_energy,kinetic_strain_ratio,max_penetration,contacts,closed,sliding,new_cracks,cracks_total,cracks_tensile,"
-         "cracks_shear,support_energy,work_gravity,work_loads,work_supports,friction_dissipation,joint_break_loss,"
-         "numerical_dissipation,balance_error\n";
-}
-
-std::string history_row(const StepReport& r) {
-  const double ratio = r.energy.strain > 0.0 ? r.energy.kinetic_free / r.energy.strain : 0.0;
-  const StepEnergy& w = r.ledger.total;
-  return fmt::format("{},{:.17g},{:.17g},{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.9g},{:.17g},{},{},{},{},{},{},{},"
-                     "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.9g}\n",
-                     r.step, r.time, r.dt, r.open_close, r.cg_iterations, r.cuts, r.energy.kinetic, r.energy.strain,
-                     r.energy.contact, r.energy.kinetic_free, ratio, r.max_penetration, r.contacts, r.closed, r.sliding, r.new_cracks,
-                     r.cracks.total, r.cracks.tensile, r.cracks.shear, r.energy.support, w.work_gravity, w.work_loads,
-                     w.work_supports, w.friction, w.joint_breaks, w.numerical, r.ledger.balance_error());
-}
-
-std::string cracks_document(const std::vector<CrackEvent>& cracks) {
-  std::string s = "t,x,y,type,joint,r1,r2\n";
-  for (const CrackEvent& c : cracks)
-    s += fmt::format("{:.17g},{:.17g},{:.17g},{},{},{:.17g},{:.17g}\n", c.t, c.x, c.y, to_string(c.type), c.joint, c.r1, c.r2);
-  return s;
-}
-
-/// New cracks per interval [k·w, (k+1)·w) from t = 0 up to the interval holding `time`.
-std::string crack_intervals_document(const std::vector<CrackEvent>& cracks, double width, double time) {
-  const auto bins = static_cast<std::size_t>(std::max(1.0, std::ceil(time / width * (1.0 - kTimeSlack))));
-  std::vector<CrackCounts> n(bins);
-  for (const CrackEvent& c : cracks) {
-    const auto k = std::min(bins - 1, static_cast<std::size_t>(std::max(0.0, c.t / width * (1.0 - kTimeSlack))));
-    ++n[k].total;
-    if (c.type == CrackType::Tensile) ++n[k].tensile; else ++n[k].shear;
-  }
-  std::string s = "interval_start,interval_end,total,tensile,shear\n";
-  for (std::size_t k = 0; k < bins; ++k)
-    s += fmt::format("{:.9g},{:.9g},{},{},{}\n", static_cast<double>(k) * width, static_cast<double>(k + 1) * width,
-                     n[k].total, n[k].tensile, n[k].shear);
-  return s;
-}
 
 /// The run directory's files besides the snapshots (vtk/snapshot_NNNNNN.vtu).
 const char* const kRunFiles[] = {"summary.json", "history.csv",  "cracks.csv", "crack_intervals.csv",
@@ -80,157 +32,7 @@ void check_finite(const StepReport& r) {
       r.step, r.time, r.energy.kinetic, r.energy.strain, r.energy.contact));
 }
 
-struct Snapshot {
-  double time;
-  std::string file;  // relative to the run directory
-};
-
-std::string pvd_document(const std::vector<Snapshot>& snaps) {
-  std::string s = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
-  for (const auto& p : snaps)
-    s += fmt::format("    <DataSet timestep=\"{:.17g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", p.time, p.file);
-  s += "  </Collection>\n</VTKFile>\n";
-  return s;
-}
-
-nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResult& r,
-                            const nlohmann::json& loading) {
-  using nlohmann::json;
-  const auto& sc = e.scene();
-  const auto& an = sc.analysis;
-  const Statistics& st = e.statistics();
-  json j;
-  j["ddafrac_version"] = DDAFRAC_VERSION;
-  j["scene"] = {{"name", sc.name},
-                {"source", sc.source.string()},
-                {"mode", mode_name(an.mode)},
-                {"plane", plane_name(an.plane)},
-                {"dt_max", an.dt_max},
-                {"max_displacement_ratio", an.max_displacement_ratio},
-                {"penalty", an.penalty},
-                {"end_time", an.end_time},
-                {"output_interval", an.output_interval},
-                {"gravity", {an.gravity[0], an.gravity[1]}},
-                {"open_close_max", an.open_close_max},
-                {"blocks", e.blocks().block_count()},
-                {"virtual_joints", e.blocks().joints.size()}};
-  j["threads"] = o.threads;
-  j["threads_fewest"] = r.threads_fewest > 0 ? r.threads_fewest : o.threads;
-  j["thread_count_changes"] = r.thread_count_changes;
-  j["solver"] = to_string(e.options().solver.kind);
-  j["allowed_step_displacement"] = e.allowed_displacement();
-  j["contact_search_distance"] = e.options().detection.search_distance;
-  const PhaseTimes& t = st.times;
-  j["wall_time"] = {{"setup", o.setup_wall},     {"detection", t.detection}, {"assembly", t.assembly},
-                    {"solve", t.solve},        {"judgement", t.judgement}, {"fracture", t.fracture},
-                    {"update", t.update},
-                    {"output", t.output},      {"total", r.wall}};
-  j["steps"] = st.steps;
-  j["simulated_time"] = e.time();
-  j["dt"] = {{"min", st.dt_min},
-             {"max", st.dt_max},
-             {"mean", st.steps > 0 ? st.dt_sum / static_cast<double>(st.steps) : 0.0},
-             {"cuts_displacement", st.cuts_displacement},
-             {"cuts_open_close", st.cuts_open_close},
-             {"cuts_solver", st.cuts_solver}};
-  j["open_close"] = {{"total", st.open_close_total},
-                     {"mean", st.steps > 0 ? static_cast<double>(st.open_close_total) / static_cast<double>(st.steps) : 0.0},
-                     {"max", st.open_close_max}};
-  j["cg"] = {{"solves", st.solves},
-             {"total", st.cg_total},
-             {"mean", st.solves > 0 ? static_cast<double>(st.cg_total) / static_cast<double>(st.solves) : 0.0},
-             {"max", st.cg_max}};
-  const EnergyLedger& ledger = e.ledger();
-  j["energy"] = {{"unit", "J/m"},
-                 {"initial", ledger.initial},
-                 {"stored", {{"kinetic", ledger.stored.kinetic},
-                             {"strain", ledger.stored.strain},
-                             {"contact", ledger.stored.contact},
-                             {"support", ledger.stored.support},
-                             {"total", ledger.stored.stored()}}},
-                 {"work", {{"gravity", ledger.total.work_gravity},
-                           {"loads", ledger.total.work_loads},
-                           {"supports", ledger.total.work_supports},
-                           {"total", ledger.work()}}},
-                 {"dissipated", {{"friction", ledger.total.friction},
-                                 {"joint_breaks", ledger.total.joint_breaks},
-                                 {"numerical", ledger.total.numerical},
-                                 {"total", ledger.dissipated()}}},
-                 {"balance_error", ledger.balance_error()},
-                 {"largest_balance_error", ledger.largest_balance_error}};
-  j["max_penetration"] = st.max_penetration;
-  j["cohesion_failures"] = st.cohesion_failures;
-  j["missed_contacts"] = {{"count", st.missed_contacts}, {"deepest_m", st.deepest_missed}};
-  j["contacts"] = e.contacts().contacts.size();
-  j["active_terms"] = e.active_terms().names();
-  const CrackCounts& cc = e.crack_counts();
-  j["cracks"] = {{"total", cc.total}, {"tensile", cc.tensile}, {"shear", cc.shear},
-                 {"interval", sc.output.crack_interval}};
-  j["loading"] = loading;
-  j["exit"] = {{"status", r.exit_status}, {"reason", r.reason}, {"message", r.message}};
-  return j;
-}
-
 }  // namespace
-
-void principal_stresses(const Vec3& s, double& sigma1, double& sigma3) {
-  const double c = 0.5 * (s[0] + s[1]);
-  const double r = std::hypot(0.5 * (s[0] - s[1]), s[2]);
-  sigma1 = c + r;
-  sigma3 = c - r;
-}
-
-std::string vtu_document(const Engine& e) {
-  const BlockSystem& b = e.blocks();
-  const std::size_t nb = b.block_count();
-  std::vector<const Joint*> lines;
-  for (const Joint& j : b.joints)
-    if (j.broken && j.failure != CrackType::None) lines.push_back(&j);
-  const std::size_t nl = lines.size();
-  std::string s;
-  s.reserve(200 * b.vertex_count() + 400 * nb);
-  s += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
-  s += fmt::format("<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", b.vertex_count(), nb + nl);
-  s += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (std::size_t v = 0; v < b.vertex_count(); ++v) s += fmt::format("{:.12g} {:.12g} 0\n", b.vx[v], b.vy[v]);
-  s += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
-  for (std::size_t v = 0; v < b.vertex_count(); ++v) s += fmt::format("{}\n", v);
-  for (const Joint* j : lines) s += fmt::format("{}\n{}\n", j->vertex_a, j->vertex_b);
-  s += "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
-  for (std::size_t c = 0; c < nb; ++c) s += fmt::format("{}\n", b.vertex_offsets[c + 1]);
-  for (std::size_t c = 0; c < nl; ++c) s += fmt::format("{}\n", b.vertex_count() + 2 * (c + 1));
-  s += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-  for (std::size_t c = 0; c < nb; ++c) s += "7\n";
-  for (std::size_t c = 0; c < nl; ++c) s += "3\n";
-  s += "</DataArray>\n</Cells>\n<CellData Scalars=\"sigma1\">\n";
-  s += "<DataArray type=\"Int32\" Name=\"body\" format=\"ascii\">\n";
-  for (std::size_t c = 0; c < nb; ++c) s += fmt::format("{}\n", b.mesh_body[c]);
-  for (std::size_t c = 0; c < nl; ++c) s += "-1\n";
-  s += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"crack_type\" format=\"ascii\">\n";
-  for (std::size_t c = 0; c < nb; ++c) s += "0\n";
-  for (const Joint* j : lines) s += fmt::format("{}\n", static_cast<int>(j->failure));
-  s += "</DataArray>\n<DataArray type=\"Float64\" Name=\"stress\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (std::size_t c = 0; c < nb; ++c) s += fmt::format("{:.9g} {:.9g} {:.9g}\n", b.stress[c][0], b.stress[c][1], b.stress[c][2]);
-  for (std::size_t c = 0; c < nl; ++c) s += "0 0 0\n";
-  std::string s1 = "</DataArray>\n<DataArray type=\"Float64\" Name=\"sigma1\" format=\"ascii\">\n";
-  std::string s3 = "</DataArray>\n<DataArray type=\"Float64\" Name=\"sigma3\" format=\"ascii\">\n";
-  for (std::size_t c = 0; c < nb; ++c) {
-    double a, z;
-    principal_stresses(b.stress[c], a, z);
-    s1 += fmt::format("{:.9g}\n", a);
-    s3 += fmt::format("{:.9g}\n", z);
-  }
-  for (std::size_t c = 0; c < nl; ++c) {
-    s1 += "0\n";
-    s3 += "0\n";
-  }
-  s += s1 + s3;
-  s += "</DataArray>\n<DataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (std::size_t c = 0; c < nb; ++c) s += fmt::format("{:.9g} {:.9g} 0\n", b.velocity[c][kU], b.velocity[c][kV]);
-  for (std::size_t c = 0; c < nl; ++c) s += "0 0 0\n";
-  s += "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-  return s;
-}
 
 std::size_t remove_previous_run(const fs::path& dir) {
   std::string names;

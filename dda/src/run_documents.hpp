@@ -1,0 +1,37 @@
+#pragma once
+// The documents of a run directory, one function each: history.csv rows, cracks.csv,
+// crack_intervals.csv, run.pvd, summary.json and the VTU snapshot (run.hpp). Internal to the
+// dda library: run.cpp owns when they are written, these own what they say.
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+#include "ddafrac/dda/run.hpp"
+
+namespace ddafrac::dda {
+
+/// Relative slack when comparing simulated times with output times.
+inline constexpr double kTimeSlack = 1e-9;
+
+std::string history_header();
+/// One history.csv row of an accepted step.
+std::string history_row(const StepReport& r);
+
+std::string cracks_document(const std::vector<CrackEvent>& cracks);
+
+/// New cracks per interval [k·w, (k+1)·w) from t = 0 up to the interval holding `time`.
+std::string crack_intervals_document(const std::vector<CrackEvent>& cracks, double width, double time);
+
+struct Snapshot {
+  double time;
+  std::string file;  // relative to the run directory
+};
+
+std::string pvd_document(const std::vector<Snapshot>& snaps);
+
+/// summary.json of the run so far; `loading` is its "loading" entry.
+nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResult& r, const nlohmann::json& loading);
+
+}  // namespace ddafrac::dda
