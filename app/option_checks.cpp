@@ -32,16 +32,26 @@ CLI::Validator whole_number(long long min, long long max) {
       expected);
 }
 
-CLI::Validator positive_number() {
+namespace {
+
+/// A finite number > 0, or >= 0 with `zero_allowed`.
+CLI::Validator number_from_zero(bool zero_allowed) {
+  const char* const expected = zero_allowed ? "a number >= 0" : "a number > 0";
   return CLI::Validator(
-      [](std::string& text) -> std::string {
+      [zero_allowed, expected](std::string& text) -> std::string {
         char* end = nullptr;
         const double value = std::strtod(text.c_str(), &end);
         const bool number = !text.empty() && end && *end == '\0';
-        if (number && std::isfinite(value) && value > 0.0) return {};
-        return fmt::format("expected a number > 0, got \"{}\"", text);
+        if (number && std::isfinite(value) && (value > 0.0 || (zero_allowed && value == 0.0))) return {};
+        return fmt::format("expected {}, got \"{}\"", expected, text);
       },
-      "a number > 0");
+      expected);
 }
+
+}  // namespace
+
+CLI::Validator positive_number() { return number_from_zero(false); }
+
+CLI::Validator non_negative_number() { return number_from_zero(true); }
 
 }  // namespace ddafrac::app

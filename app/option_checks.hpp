@@ -24,4 +24,7 @@ CLI::Validator whole_number(long long min, long long max = kNoUpperLimit);
 /// A finite number > 0.
 CLI::Validator positive_number();
 
+/// A finite number >= 0.
+CLI::Validator non_negative_number();
+
 }  // namespace ddafrac::app

@@ -1,8 +1,10 @@
 // `ddafrac run SCENE [--out DIR] [--threads N] [--set key=value ...]`: one DDA run of a scene,
-// with a progress bar on a terminal (plain lines otherwise), writing the run directory.
+// with a progress bar on a terminal (plain lines otherwise), writing the run directory;
+// `ddafrac run --resume DIR` continues a stopped or killed run from its checkpoint.
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 #include <omp.h>
 #include <unistd.h>
 
@@ -11,6 +13,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cmath>
+#include <fstream>
 #include <memory>
 #include <optional>
 
@@ -105,7 +108,13 @@ void clear_previous_run(const std::filesystem::path& out) {
   if (removed > 0) fmt::print("removed {} file(s) of a previous run from {}\n", removed, out.string());
 }
 
+/// Wall seconds between checkpoints by default: a killed run loses at most this much work, and
+/// writing a checkpoint (tens of MB at the study's full size) costs well under 1% of it.
+constexpr double kDefaultCheckpointEvery = 600.0;
+
 struct RunArguments {
+  std::string resume;  // run directory to resume ("": a new run)
+  double checkpoint_every = kDefaultCheckpointEvery;
   SceneArguments scene;
   std::string out;
   int threads = 0;
@@ -141,9 +150,81 @@ void show_progress(const dda::Progress& p, bool tty) {
   std::fflush(tty ? stderr : stdout);
 }
 
-void run_run(const RunArguments& args) {
+
+/// What a checkpoint keeps of how the run was started: enough to rebuild it on resume.
+std::string invocation_of(const RunArguments& args, const scene::Scene& scene, const std::filesystem::path& out) {
+  const std::string scene_file =
+      args.scene.scene_file.empty() ? std::string() : std::filesystem::absolute(args.scene.scene_file).string();
+  const nlohmann::json j = {{"scene_file", scene_file},       {"overrides", args.scene.overrides},
+                            {"solver", args.solver},          {"no_vtk", args.no_vtk},
+                            {"out", std::filesystem::absolute(out).string()}, {"scene_text", scene.resolved_text}};
+  return j.dump();
+}
+
+/// The arguments of the run being resumed: how it was started (from its checkpoint), with this
+/// command's threads, step limit, checkpoint interval and figure and energy options.
+RunArguments resumed_arguments(const RunArguments& given, const dda::Checkpoint& checkpoint) {
+  RunArguments args = given;
+  const nlohmann::json j = nlohmann::json::parse(checkpoint.invocation);
+  args.scene.scene_file = j.at("scene_file").get<std::string>();
+  args.scene.overrides = j.at("overrides").get<std::vector<std::string>>();
+  args.solver = j.at("solver").get<std::string>();
+  args.no_vtk = j.at("no_vtk").get<bool>();
+  args.out = j.at("out").get<std::string>();
+  return args;
+}
+
+/// Refuses to resume with a scene that reads differently now than when the run started, naming
+/// the first line that differs.
+void check_scene_unchanged(const scene::Scene& scene, const dda::Checkpoint& checkpoint, const std::string& run_dir) {
+  const std::string then = nlohmann::json::parse(checkpoint.invocation).at("scene_text").get<std::string>();
+  if (then == scene.resolved_text) return;
+  std::istringstream a(then), b(scene.resolved_text);
+  std::string line_then, line_now;
+  int line = 0;
+  while (true) {
+    ++line;
+    const bool more_then = static_cast<bool>(std::getline(a, line_then));
+    const bool more_now = static_cast<bool>(std::getline(b, line_now));
+    if (!more_then) line_then = "(nothing)";
+    if (!more_now) line_now = "(nothing)";
+    if (line_then != line_now || (!more_then && !more_now)) break;
+  }
+  throw CommandFailed(fmt::format(
+      "{}: cannot resume: the scene {} (with its base scenes and --set values) changed since the run started; "
+      "line {} of the resolved scene was \"{}\", is now \"{}\". Restore it, or run the scene anew",
+      run_dir, scene.source.string(), line, line_then, line_now));
+}
+
+/// How the run being resumed ended, from its summary.json: a run killed outright never wrote its
+/// end there and still says "running".
+void report_resume(const std::filesystem::path& out, const dda::Checkpoint& checkpoint) {
+  std::string ended = "unknown (no summary.json)";
+  std::ifstream in(out / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(in, nullptr, false);
+  if (!summary.is_discarded() && summary.contains("exit")) {
+    const std::string reason = summary["exit"].value("reason", "");
+    ended = reason == "running" ? fmt::format("was killed (its summary.json, of step {}, still says running)",
+                                              summary.value("steps", 0L))
+                                : fmt::format("stopped: {}", reason);
+  }
+  fmt::print("resuming {}: the run {}; continuing from its checkpoint at step {}, t = {:.6g} s\n", out.string(), ended,
+             checkpoint.step, checkpoint.time);
+}
+
+void run_run(const RunArguments& given) {
+  std::optional<dda::Checkpoint> checkpoint;
+  if (!given.resume.empty()) {
+    try {
+      checkpoint = dda::read_checkpoint(given.resume);
+    } catch (const dda::CheckpointError& e) {
+      throw CommandFailed(e.what());
+    }
+  }
+  const RunArguments args = checkpoint ? resumed_arguments(given, *checkpoint) : given;
   const scene::Scene scene = args.scene.load();
-  const std::filesystem::path out = output_directory(args.out, scene, "run");
+  if (checkpoint) check_scene_unchanged(scene, *checkpoint, given.resume);
+  const std::filesystem::path out = checkpoint ? std::filesystem::path(given.resume) : output_directory(args.out, scene, "run");
   if (args.threads > 0) omp_set_num_threads(args.threads);
   const int threads = omp_get_max_threads();
   // Threads only on the cores other processes leave free, re-measured every few seconds
@@ -183,12 +264,20 @@ void run_run(const RunArguments& args) {
   ro.max_steps = args.max_steps;
   ro.progress_every = tty ? 0.2 : 5.0;
   ro.progress = [tty](const dda::Progress& p) { show_progress(p, tty); };
-  clear_previous_run(out);
+  ro.checkpoint_every = args.checkpoint_every;
+  ro.invocation = invocation_of(args, scene, out);
+  ro.resume = checkpoint ? &*checkpoint : nullptr;
+  if (checkpoint)
+    report_resume(out, *checkpoint);
+  else
+    clear_previous_run(out);
   dda::RunResult result;
-  {
+  try {
     StopSignalGuard guard;
     ro.stop = &stop_signal;
     result = dda::run_simulation(*engine, ro);
+  } catch (const dda::CheckpointError& e) {
+    throw CommandFailed(e.what());
   }
   if (tty) fmt::print(stderr, "\n");
   const auto& st = engine->statistics();
@@ -241,7 +330,17 @@ void register_run_command(CLI::App& app) {
   auto args = std::make_shared<RunArguments>();
   CLI::App* command = app.add_subcommand("run", "run the DDA simulation of a scene and write its run directory");
   args->scene.add_to(*command);
-  command->add_option("--out", args->out, "run directory (default runs/<scene name>/run)");
+  CLI::Option* out = command->add_option("--out", args->out, "run directory (default runs/<scene name>/run)");
+  CLI::Option* resume =
+      command->add_option("--resume", args->resume,
+                          "continue the run in this directory from its checkpoint, with the scene, --set, --solver "
+                          "and --no-vtk it was started with; the finished files are those of an uninterrupted run")
+          ->type_name("RUN_DIR");
+  command->add_option("--checkpoint-every", args->checkpoint_every,
+                      fmt::format("wall seconds between checkpoints (default {:g}; 0: only when stopped by a signal "
+                                  "or --max-steps)",
+                                  kDefaultCheckpointEvery))
+      ->check(non_negative_number());
   command->add_option("--threads", args->threads,
                       "most OpenMP threads (default: OMP_NUM_THREADS or all cores); fewer while other processes keep "
                       "cores busy")
@@ -257,6 +356,10 @@ void register_run_command(CLI::App& app) {
                       "warn at the end when the energy balance error ever exceeded this fraction (default 0.01)")
       ->check(positive_number());
   command->add_flag("--no-figures", args->no_figures, "skip the PNG figures (also skipped when scene.output.figures is false)");
+  // A resumed run is the run it continues: what decides its results cannot change.
+  for (CLI::Option* fixed : {out, command->get_option("scene"), command->get_option("--set"),
+                             command->get_option("--solver"), command->get_option("--no-vtk")})
+    resume->excludes(fixed);
   command->callback([args] { run_run(*args); });
 }
 

@@ -8,7 +8,7 @@ DDAFRAC_BUILD="${DDAFRAC_BUILD:-$DDAFRAC_ROOT/build}"
 # Every dependency is a Debian 12 package (see README "Dependencies" for why each is there).
 DDAFRAC_PACKAGES=(
   cmake g++ make pkg-config
-  libeigen3-dev libgmsh-dev libboost-test-dev
+  libeigen3-dev libgmsh-dev libboost-test-dev libboost-serialization-dev
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libfmt-dev libcairo2-dev
   libdeal.ii-dev libsuitesparse-dev openmpi-bin
   python3-matplotlib

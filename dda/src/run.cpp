@@ -1,24 +1,36 @@
 #include "ddafrac/dda/run.hpp"
 
-#include "ddafrac/common/whole_file.hpp"
-#include "run_documents.hpp"
-
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/vector.hpp>
 #include <fmt/core.h>
 #include <omp.h>
 
 #include <algorithm>
 #include <cmath>
 #include <regex>
+#include <sstream>
+
+#include "ddafrac/common/whole_file.hpp"
+#include "ddafrac/dda/checkpoint.hpp"
+#include "run_documents.hpp"
 
 namespace ddafrac::dda {
 
 namespace fs = std::filesystem;
 
+// Found by argument-dependent lookup, so in Snapshot's namespace (not the anonymous one).
+template <class Archive>
+void serialize(Archive& a, Snapshot& s, unsigned) {
+  a& s.time& s.file;
+}
+
 namespace {
 
 /// The run directory's files besides the snapshots (vtk/snapshot_NNNNNN.vtu).
 const char* const kRunFiles[] = {"summary.json", "history.csv",  "cracks.csv", "crack_intervals.csv",
-                                 "gauges.csv",   "loading.csv", "run.pvd"};
+                                 "gauges.csv",   "loading.csv", "run.pvd",    "checkpoint.bin"};
 
 /// NaN or infinity in a step's energies means NaN or infinity in the blocks' state.
 void check_finite(const StepReport& r) {
@@ -30,6 +42,66 @@ void check_finite(const StepReport& r) {
       "{:g} J/m), so NaN or infinity is in the blocks' state; a stiffness out of scale (materials.*.young, "
       "analysis.penalty, joints.*.normal_stiffness) or a velocity out of scale does this",
       r.step, r.time, r.energy.kinetic, r.energy.strain, r.energy.contact));
+}
+
+/// What the run loop gathers for its files beyond the engine's state: kept in checkpoints, so
+/// that a resumed run writes exactly the files of an uninterrupted one.
+struct RunLog {
+  std::string history, gauges, loading;  // the CSV files' text so far
+  double gauges_time = -1.0;              // s, of the latest gauge rows
+  nlohmann::json peaks = nlohmann::json::object();  // peak forces of the prescribed bodies
+  std::vector<Snapshot> snapshots;
+  long next_output = 1;         // number of the next output interval
+  bool snapshot_at_end = false;  // a step was taken since the latest snapshot
+  int threads_fewest = 0, thread_count_changes = 0;
+  double wall = 0.0;  // s, of the earlier parts of a resumed run
+  struct Resume {
+    long step = 0;
+    double time = 0.0;  // s
+  };
+  std::vector<Resume> resumes;
+};
+
+template <class Archive>
+void serialize(Archive& a, RunLog::Resume& r, unsigned) {
+  a& r.step& r.time;
+}
+
+template <class Archive>
+void serialize(Archive& a, RunLog& log, std::string& peaks) {
+  a& log.history& log.gauges& log.loading& log.gauges_time& peaks& log.snapshots& log.next_output;
+  a& log.snapshot_at_end& log.threads_fewest& log.thread_count_changes& log.wall& log.resumes;
+}
+
+/// The log as bytes, its wall time with the `elapsed` seconds of this part of the run.
+std::string write_run_log(RunLog log, double elapsed) {
+  log.wall += elapsed;
+  std::string peaks = log.peaks.dump();
+  std::ostringstream bytes(std::ios::binary);
+  {
+    boost::archive::binary_oarchive archive(bytes);
+    serialize(archive, log, peaks);
+  }
+  return std::move(bytes).str();
+}
+
+RunLog read_run_log(const std::string& bytes) {
+  RunLog log;
+  std::string peaks;
+  std::istringstream in(bytes, std::ios::binary);
+  boost::archive::binary_iarchive archive(in);
+  serialize(archive, log, peaks);
+  log.peaks = nlohmann::json::parse(peaks);
+  return log;
+}
+
+/// Removes the snapshots numbered `first` and after: a resumed run writes them again.
+void remove_snapshots_from(const fs::path& vtk, std::size_t first) {
+  std::error_code error;
+  for (std::size_t k = first;; ++k) {
+    const fs::path file = vtk / fmt::format("snapshot_{:06d}.vtu", k);
+    if (!fs::remove(file, error)) break;
+  }
 }
 
 }  // namespace
@@ -54,37 +126,54 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
   const auto& an = engine.scene().analysis;
   const double end = an.end_time;
   const double interval = an.output_interval > 0.0 ? an.output_interval : end;
-  std::string history = history_header();
-  std::vector<Snapshot> snaps;
   Statistics& st = engine.statistics();
   const scene::Scene& sc = engine.scene();
   const double crack_width = sc.output.crack_interval > 0.0 ? sc.output.crack_interval : end;
 
+  RunLog log;
+  log.history = history_header();
+  log.gauges = "t,gauge,sigma_xx,sigma_yy,tau_xy,sigma1,sigma3\n";
+  log.loading = "t,body,displacement_y,force_y\n";
+  const std::uint64_t initial_state = fingerprint(engine.carried_state());
+  if (o.resume) {
+    if (o.resume->initial_state != initial_state)
+      throw CheckpointError(fmt::format(
+          "{}: the scene and mesh rebuilt for the resume are not the ones the run started from (the scene file, a "
+          "base scene, the .msh file or ddafrac changed since); run the scene anew",
+          (o.out_dir / kCheckpointFile).string()));
+    engine.restore_carried_state(o.resume->engine);
+    log = read_run_log(o.resume->run_log);
+    log.resumes.push_back({o.resume->step, o.resume->time});
+    remove_snapshots_from(o.out_dir / "vtk", log.snapshots.size());
+  }
+  double last_checkpoint = t0;
+  auto checkpoint = [&] {
+    write_checkpoint(o.out_dir, {o.invocation, initial_state, st.steps, engine.time(), engine.carried_state(),
+                                 write_run_log(log, omp_get_wtime() - t0)});
+    last_checkpoint = omp_get_wtime();
+  };
+
   // Gauges: stress of the block that held the point at t = 0, at every output.
-  std::string gauges = "t,gauge,sigma_xx,sigma_yy,tau_xy,sigma1,sigma3\n";
-  double gauges_time = -1.0;
   auto sample_gauges = [&] {
-    if (engine.time() == gauges_time) return;
-    gauges_time = engine.time();
+    if (engine.time() == log.gauges_time) return;
+    log.gauges_time = engine.time();
     for (std::size_t g = 0; g < sc.gauges.size(); ++g) {
       const Vec3& s = engine.blocks().stress[static_cast<std::size_t>(engine.gauge_blocks()[g])];
       double s1, s3;
       principal_stresses(s, s1, s3);
-      gauges += fmt::format("{:.17g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", engine.time(), sc.gauges[g].name, s[0],
-                            s[1], s[2], s1, s3);
+      log.gauges += fmt::format("{:.17g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", engine.time(), sc.gauges[g].name,
+                                s[0], s[1], s[2], s1, s3);
     }
   };
   // Loading of fixed and prescribed bodies, every step.
   const bool loaded = !engine.blocks().anchors.empty();
-  std::string loading = "t,body,displacement_y,force_y\n";
-  nlohmann::json peaks = nlohmann::json::object();
   auto sample_loading = [&] {
     if (!loaded) return;
     for (const Engine::BodyLoad& l : engine.body_loads()) {
       const std::string name = l.body >= 0 ? sc.bodies[static_cast<std::size_t>(l.body)].name : std::string("extra");
-      loading += fmt::format("{:.17g},{},{:.12g},{:.12g}\n", engine.time(), name, l.uy, l.fy);
+      log.loading += fmt::format("{:.17g},{},{:.12g},{:.12g}\n", engine.time(), name, l.uy, l.fy);
       if (l.body < 0 || sc.bodies[static_cast<std::size_t>(l.body)].motion != scene::Motion::Prescribed) continue;
-      auto& p = peaks[name];
+      auto& p = log.peaks[name];
       if (p.is_null() || std::abs(l.fy) > p["peak_abs_force_y"].get<double>())
         p = {{"peak_abs_force_y", std::abs(l.fy)}, {"force_y", l.fy}, {"displacement_y", l.uy}, {"t", engine.time()}};
     }
@@ -93,31 +182,38 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
   auto write_outputs = [&](bool snapshot, bool state_valid = true) {
     const double w0 = omp_get_wtime();
     if (state_valid) sample_gauges();
-    if (!sc.gauges.empty()) ddafrac::common::write_whole_text(o.out_dir / "gauges.csv", gauges);
-    if (loaded) ddafrac::common::write_whole_text(o.out_dir / "loading.csv", loading);
+    if (!sc.gauges.empty()) ddafrac::common::write_whole_text(o.out_dir / "gauges.csv", log.gauges);
+    if (loaded) ddafrac::common::write_whole_text(o.out_dir / "loading.csv", log.loading);
     ddafrac::common::write_whole_text(o.out_dir / "cracks.csv", cracks_document(engine.cracks()));
     ddafrac::common::write_whole_text(o.out_dir / "crack_intervals.csv",
                                       crack_intervals_document(engine.cracks(), crack_width, engine.time()));
     if (snapshot && o.vtk) {
-      const std::string name = fmt::format("vtk/snapshot_{:06d}.vtu", snaps.size());
+      const std::string name = fmt::format("vtk/snapshot_{:06d}.vtu", log.snapshots.size());
       ddafrac::common::write_whole_text(o.out_dir / name, vtu_document(engine));
-      snaps.push_back({engine.time(), name});
-      ddafrac::common::write_whole_text(o.out_dir / "run.pvd", pvd_document(snaps));
+      log.snapshots.push_back({engine.time(), name});
+      ddafrac::common::write_whole_text(o.out_dir / "run.pvd", pvd_document(log.snapshots));
     }
-    ddafrac::common::write_whole_text(o.out_dir / "history.csv", history);
+    ddafrac::common::write_whole_text(o.out_dir / "history.csv", log.history);
     st.times.output += omp_get_wtime() - w0;
-    r.wall = omp_get_wtime() - t0;
+    r.wall = log.wall + omp_get_wtime() - t0;
     r.steps = st.steps;
     r.time = engine.time();
-    ddafrac::common::write_whole_text(o.out_dir / "summary.json", summary_json(engine, o, r, {{"peak", peaks}, {"unit", "N/m"}}).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    r.threads_fewest = log.threads_fewest;
+    r.thread_count_changes = log.thread_count_changes;
+    nlohmann::json summary = summary_json(engine, o, r, {{"peak", log.peaks}, {"unit", "N/m"}});
+    for (const RunLog::Resume& resume : log.resumes)
+      summary["resumed_from"].push_back({{"step", resume.step}, {"t", resume.time}});
+    ddafrac::common::write_whole_text(
+        o.out_dir / "summary.json",
+        summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   };
 
   r.reason = "running";
-  sample_loading();
-  write_outputs(true);
-  long next_output = 1;
+  if (!o.resume) {
+    sample_loading();
+    write_outputs(true);
+  }
   double last_progress = -1e300;
-  bool snapshot_at_end = false;
   StepReport last;
   try {
     for (;;) {
@@ -135,29 +231,30 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
         r.reason = "completed";
         break;
       }
-      const double t_out = std::min(end, static_cast<double>(next_output) * interval);
+      const double t_out = std::min(end, static_cast<double>(log.next_output) * interval);
       if (o.between_steps) {
         const int threads = o.between_steps();
-        if (r.threads_fewest > 0 && threads != current_threads) ++r.thread_count_changes;
+        if (log.threads_fewest > 0 && threads != current_threads) ++log.thread_count_changes;
         current_threads = threads;
-        r.threads_fewest = r.threads_fewest > 0 ? std::min(r.threads_fewest, threads) : threads;
+        log.threads_fewest = log.threads_fewest > 0 ? std::min(log.threads_fewest, threads) : threads;
       }
       const StepReport rep = engine.step(t_out - engine.time());
       check_finite(rep);
       last = rep;
       sample_loading();
-      if (rep.step % std::max(1, o.history_every) == 0) history += history_row(rep);
-      snapshot_at_end = true;
+      if (rep.step % std::max(1, o.history_every) == 0) log.history += history_row(rep);
+      log.snapshot_at_end = true;
       if (engine.time() >= t_out - kTimeSlack * interval) {
-        ++next_output;
+        ++log.next_output;
         write_outputs(true);
-        snapshot_at_end = false;
+        log.snapshot_at_end = false;
       }
+      if (o.checkpoint_every > 0.0 && omp_get_wtime() - last_checkpoint >= o.checkpoint_every) checkpoint();
       if (o.progress) {
         const double now = omp_get_wtime();
         if (now - last_progress >= o.progress_every) {
           last_progress = now;
-          o.progress({engine.time(), end, rep.step, rep.dt, rep.open_close, rep.cg_iterations, now - t0});
+          o.progress({engine.time(), end, rep.step, rep.dt, rep.open_close, rep.cg_iterations, log.wall + now - t0});
         }
       }
     }
@@ -166,11 +263,15 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
     r.reason = "numerical_trouble";
     r.message = ex.what();
   }
+  // A run that stopped early can be resumed from where it stopped; a finished one has nothing
+  // left to resume. After numerical trouble the last checkpoint stays (the state now may hold NaN).
+  if (r.reason == "interrupted" || r.reason == "max_steps") checkpoint();
+  if (r.reason == "completed") fs::remove(o.out_dir / kCheckpointFile);
   if (o.progress)
-    o.progress({engine.time(), end, st.steps, last.dt, last.open_close, last.cg_iterations, omp_get_wtime() - t0});
+    o.progress({engine.time(), end, st.steps, last.dt, last.open_close, last.cg_iterations, log.wall + omp_get_wtime() - t0});
   // After numerical trouble the blocks' state may hold NaN: the files keep the last good one.
   const bool state_valid = r.exit_status != kRunNumericalTrouble;
-  write_outputs(snapshot_at_end && state_valid, state_valid);
+  write_outputs(log.snapshot_at_end && state_valid, state_valid);
   return r;
 }
 

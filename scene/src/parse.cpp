@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "document.hpp"
 #include "toml_reader.hpp"
@@ -15,6 +16,12 @@
 namespace ddafrac::scene {
 
 namespace {
+
+std::string toml_text_of(const toml::table& document) {
+  std::ostringstream text;
+  text << document;
+  return std::move(text).str();
+}
 
 using detail::Diagnostics;
 using detail::Need;
@@ -370,6 +377,7 @@ Scene parse_scene(const std::string& toml_text, const std::filesystem::path& fil
   if (!diagnostics.empty()) throw SceneError(diagnostics.take());
   Scene scene = parse_document(document, file_name, diagnostics);
   if (!diagnostics.empty()) throw SceneError(diagnostics.take());
+  scene.resolved_text = toml_text_of(document);
   return scene;
 }
 
@@ -384,6 +392,7 @@ Scene load_scene(const std::filesystem::path& path, const std::vector<std::strin
   if (!diagnostics.empty()) throw SceneError(diagnostics.take());
   Scene scene = parse_document(document, path, diagnostics);
   if (!diagnostics.empty()) throw SceneError(diagnostics.take());
+  scene.resolved_text = toml_text_of(document);
   return scene;
 }
 

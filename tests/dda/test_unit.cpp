@@ -146,18 +146,25 @@ BOOST_AUTO_TEST_CASE(glued_disc_contacts_are_two_per_joint_and_one_per_shared_no
   BOOST_TEST(node_pairs.size() == node_contacts);
 }
 
+/// A disc hitting the ground at 20 m/s with virtual joints at 5% of their strength: it cracks
+/// within the first 200 steps.
+scene::Scene cracking_impact_scene() {
+  scene::Scene s = make_impact_scene(20.0, 1e-3);
+  constexpr double kWeakening = 0.05;  // of the virtual joints' strengths
+  for (auto& js : s.joint_sets) {
+    js.tensile_strength *= kWeakening;
+    js.cohesion *= kWeakening;
+  }
+  return s;
+}
+
 // The contact pair list (Verlet list) is an optimisation only: with the default skin, with no
 // skin (rebuilt whenever a vertex moved) and with a 4x wider skin, a disc hitting a plate at
 // 20 m/s with weak joints (it cracks) finds the same contacts in the same states and the same
 // displacements, bit for bit, at every step; the wider the skin, the fewer the rebuilds.
 BOOST_AUTO_TEST_CASE(the_pair_list_changes_no_contact) {
   const meshes::Mesh m = make_ring_disc_mesh(0.1, 600);
-  scene::Scene s = make_impact_scene(20.0, 1e-3);
-  constexpr double kWeakening = 0.05;  // of the virtual joints' strengths: cracks within the test
-  for (auto& js : s.joint_sets) {
-    js.tensile_strength *= kWeakening;
-    js.cohesion *= kWeakening;
-  }
+  const scene::Scene s = cracking_impact_scene();
   auto with_skin = [](double factor) {
     EngineOptions o;
     o.pair_list_skin_factor = factor;
@@ -189,6 +196,38 @@ BOOST_AUTO_TEST_CASE(the_pair_list_changes_no_contact) {
   BOOST_TEST(none.statistics().pair_list_builds >= kSteps - 1);
   BOOST_TEST(reference.statistics().pair_list_builds < kSteps / 2);  // 54 of 200 at 20 m/s
   BOOST_TEST(wide.statistics().pair_list_builds <= reference.statistics().pair_list_builds);
+}
+
+// An engine given another's carried state (a checkpoint) continues exactly as that one does:
+// same contacts, displacements, stresses, cracks and energies, bit for bit, through cracking.
+BOOST_AUTO_TEST_CASE(a_restored_state_continues_bit_for_bit) {
+  const meshes::Mesh m = make_ring_disc_mesh(0.1, 600);
+  const scene::Scene s = cracking_impact_scene();
+  constexpr int kStepsBefore = 60, kStepsAfter = 140;
+  Engine original(s, m);
+  for (int k = 0; k < kStepsBefore; ++k) original.step();
+  Engine resumed(s, m);
+  resumed.restore_carried_state(original.carried_state());
+  for (int k = 0; k < kStepsAfter; ++k) {
+    original.step();
+    resumed.step();
+  }
+  const BlockSystem& a = original.blocks();
+  const BlockSystem& b = resumed.blocks();
+  BOOST_TEST_MESSAGE("after " << kStepsBefore + kStepsAfter << " steps: " << original.crack_counts().total
+                              << " cracks, " << original.contacts().contacts.size() << " contacts");
+  BOOST_TEST(original.crack_counts().total > 0);
+  BOOST_TEST(original.time() == resumed.time());
+  BOOST_TEST(original.dt() == resumed.dt());
+  BOOST_TEST((a.vx == b.vx && a.vy == b.vy));
+  BOOST_TEST((a.stress == b.stress && a.velocity == b.velocity));
+  BOOST_TEST(original.last_displacement() == resumed.last_displacement());
+  BOOST_TEST(original.cracks().size() == resumed.cracks().size());
+  BOOST_TEST(original.ledger().balance_error() == resumed.ledger().balance_error());
+  BOOST_TEST(original.statistics().cg_total == resumed.statistics().cg_total);
+  // Engines built from one scene and mesh start from the same bytes: what a checkpoint's
+  // fingerprint of the state at t = 0 relies on.
+  BOOST_TEST(Engine(s, m).carried_state() == Engine(s, m).carried_state());
 }
 
 // PCG with block-Jacobi agrees with the sparse LDLT to the PCG tolerance (1e-12 relative residual

@@ -170,7 +170,16 @@ class Engine {
   };
   std::vector<BodyLoad> body_loads() const;
 
+  /// The state one step hands to the next (blocks, joints, contacts, pair list, clocks, step-size
+  /// control, ledger, cracks, statistics) as bytes, for a checkpoint. Restored into an engine
+  /// built from the same scene and mesh, the run continues bit for bit as if never stopped.
+  /// Throws boost::archive::archive_exception on bytes that are not such a state.
+  std::string carried_state() const;
+  void restore_carried_state(const std::string& state);
+
  private:
+  template <class Archive>
+  void serialize_carried_state(Archive& archive);  // engine_state.cpp
   void detect();
   void start_cohesive(Contact& c) const;
   void block_terms(double dt);

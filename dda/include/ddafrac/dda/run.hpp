@@ -1,13 +1,15 @@
 #pragma once
 // A whole run: the time loop driving an Engine to the scene's end time, writing the run
-// directory: summary.json, history.csv, vtk/*.vtu + run.pvd. Every file is written
-// whole (temporary name, then rename), so an interrupted or failed run leaves valid files.
+// directory: summary.json, history.csv, vtk/*.vtu + run.pvd, and checkpoint.bin while the run
+// is unfinished. Every file is written whole (temporary name, then rename), so an interrupted or
+// failed run leaves valid files, and a checkpointed one can be resumed.
 
 #include <atomic>
 #include <filesystem>
 #include <functional>
 #include <string>
 
+#include "ddafrac/dda/checkpoint.hpp"
 #include "ddafrac/dda/engine.hpp"
 
 namespace ddafrac::dda {
@@ -41,6 +43,13 @@ struct RunOptions {
   /// Stop request: the number of the signal received (set by a handler owned by the caller),
   /// 0 while none; checked once per step. The run's exit status is then 128 + the signal.
   const std::atomic<int>* stop = nullptr;
+  /// Wall seconds between checkpoints (checkpoint.hpp), 0 for none. A run stopped by a signal
+  /// or at max_steps also writes one; a completed run removes it.
+  double checkpoint_every = 0.0;
+  std::string invocation;  // kept in every checkpoint (Checkpoint::invocation)
+  /// Continue from this checkpoint of out_dir instead of from t = 0. The engine must be freshly
+  /// built from the run's scene and mesh (checked: CheckpointError otherwise).
+  const Checkpoint* resume = nullptr;
 };
 
 /// Run directory contents besides the VTU files, all written whole at every

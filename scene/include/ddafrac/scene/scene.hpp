@@ -87,6 +87,9 @@ struct Scene {
   std::string name;
   std::string description;
   std::filesystem::path source;  // the TOML file it came from ("" if built in)
+  /// The whole scene as read: its `base` chain merged and --set applied, printed as TOML. A
+  /// run's checkpoint keeps it, and a resume refuses a scene whose files changed since.
+  std::string resolved_text;
   std::vector<Material> materials;
   std::vector<JointSet> joint_sets;
   meshes::Geometry geometry;
