@@ -302,9 +302,10 @@ void run_run(const RunArguments& given) {
                "{:.3g}), so the run created or lost energy that no load, support, friction, crack or the time "
                "scheme accounts for (the energy columns of history.csv show when)\n",
                ledger.largest_balance_error, args.energy_tolerance, ledger.balance_error());
-  fmt::print("wrote {}/{{summary.json, history.csv, cracks.csv, crack_intervals.csv{}{}{}}}\n", out.string(),
-             scene.gauges.empty() ? "" : ", gauges.csv", engine->blocks().anchors.empty() ? "" : ", loading.csv",
-             ro.vtk ? ", run.pvd, vtk/" : "");
+  if (result.exit_status != dda::kRunWriteFailed)
+    fmt::print("wrote {}/{{summary.json, history.csv, cracks.csv, crack_intervals.csv{}{}{}}}\n", out.string(),
+               scene.gauges.empty() ? "" : ", gauges.csv", engine->blocks().anchors.empty() ? "" : ", loading.csv",
+               ro.vtk ? ", run.pvd, vtk/" : "");
   std::fflush(stdout);
   // Figures of whatever was written (also after an interruption or numerical trouble).
   if (scene.output.figures && !args.no_figures) {
@@ -321,6 +322,13 @@ void run_run(const RunArguments& given) {
   }
   if (result.reason == "interrupted")
     throw CommandFailed(result.message + "; the files written so far are valid", result.exit_status);
+  if (result.exit_status == dda::kRunWriteFailed) {
+    const bool resumable = std::filesystem::exists(out / dda::kCheckpointFile);
+    throw CommandFailed(result.message + "; every file of " + out.string() + " keeps its last whole version" +
+                            (resumable ? "; free some space and continue with: ddafrac run --resume " + out.string()
+                                       : std::string()),
+                        result.exit_status);
+  }
   if (result.exit_status != dda::kRunCompleted) throw CommandFailed(result.message, result.exit_status);
 }
 

@@ -1,10 +1,13 @@
 // `ddafrac sweep SWEEP.toml [--out DIR] [--parallel N] [--set key=value ...]`: runs every case
 // of a sweep (each as its own `ddafrac run` process, several at once when the cores allow) and
 // writes one table of the cases with their crack counts and run times, plus comparison plots.
+// With --resume, finished cases are kept and stopped or killed ones continue from their
+// checkpoints.
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -19,6 +22,8 @@
 #include "commands.hpp"
 #include "option_checks.hpp"
 #include "ddafrac/common/whole_file.hpp"
+#include "ddafrac/dda/checkpoint.hpp"
+#include "ddafrac/dda/run.hpp"
 #include "ddafrac/scene/parse.hpp"
 #include "ddafrac/scene/sweep.hpp"
 #include "figures.hpp"
@@ -38,13 +43,19 @@ struct SweepArguments {
   std::string out;
   int parallel = 0;
   std::vector<std::string> overrides;
+  bool resume = false;  // keep finished cases, continue stopped ones from their checkpoints
+  std::optional<double> checkpoint_every;  // s, passed on to every run (default: run's own)
 };
+
+/// How a case starts: from t = 0, from its checkpoint, or not at all (finished before).
+enum class Start { Fresh, FromCheckpoint, Finished };
 
 /// One case: its scene (validated before anything runs) and, once run, its results.
 struct Case {
   fs::path scene_file;
   scene::Scene scene;
   fs::path run_dir;
+  Start start = Start::Fresh;
   int exit_code = -1;
   double wall_seconds = 0.0;
   std::optional<std::array<double, 3>> cracks;  // total, tensile, shear at the sweep's crack time
@@ -126,9 +137,19 @@ std::vector<Case> load_cases(const scene::Sweep& sweep, const std::vector<std::s
   return cases;
 }
 
-std::vector<std::string> run_arguments(const Case& c, const scene::Sweep& sweep, const std::vector<std::string>& overrides) {
-  std::vector<std::string> argv{own_executable().string(), "run", c.scene_file.string(), "--out", c.run_dir.string(),
-                                "--threads", std::to_string(sweep.threads)};
+std::vector<std::string> run_arguments(const Case& c, const scene::Sweep& sweep, const SweepArguments& args,
+                                       const std::vector<std::string>& overrides) {
+  std::vector<std::string> argv{own_executable().string(), "run", "--threads", std::to_string(sweep.threads)};
+  if (args.checkpoint_every) {
+    argv.push_back("--checkpoint-every");
+    argv.push_back(fmt::format("{:.17g}", *args.checkpoint_every));
+  }
+  if (c.start == Start::FromCheckpoint) {
+    argv.push_back("--resume");
+    argv.push_back(c.run_dir.string());
+    return argv;
+  }
+  for (const std::string& item : {c.scene_file.string(), std::string("--out"), c.run_dir.string()}) argv.push_back(item);
   for (const std::string& o : overrides) {
     argv.push_back("--set");
     argv.push_back(o);
@@ -136,21 +157,68 @@ std::vector<std::string> run_arguments(const Case& c, const scene::Sweep& sweep,
   return argv;
 }
 
+/// The text of a file, or nothing if it cannot be read.
+std::optional<std::string> file_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// A run's summary.json, or a discarded value if it cannot be read.
+nlohmann::json read_summary(const fs::path& run_dir) {
+  std::ifstream in(run_dir / "summary.json");
+  return nlohmann::json::parse(in, nullptr, false);
+}
+
+/// A run's wall time over all its parts (a resumed run's included), from its summary.json.
+std::optional<double> summary_wall(const nlohmann::json& summary) {
+  if (summary.is_discarded() || !summary.contains("wall_time")) return std::nullopt;
+  return summary["wall_time"].value("total", 0.0);
+}
+
+/// For a resumed sweep: a case whose run completed with the scene it has now is finished (its
+/// wall time is the run's); one with a checkpoint of that scene continues from it; any other
+/// (never started, failed, or its scene changed since) starts again from t = 0.
+void decide_start(Case& c) {
+  const nlohmann::json summary = read_summary(c.run_dir);
+  const bool same_scene = file_text(c.run_dir / dda::kResolvedSceneFile) == c.scene.resolved_text;
+  if (same_scene && !summary.is_discarded() && summary.contains("exit") &&
+      summary["exit"].value("reason", "") == "completed") {
+    c.start = Start::Finished;
+    c.exit_code = 0;
+    c.wall_seconds = summary_wall(summary).value_or(0.0);
+    return;
+  }
+  if (same_scene && fs::exists(c.run_dir / dda::kCheckpointFile)) {
+    c.start = Start::FromCheckpoint;
+    return;
+  }
+  c.start = Start::Fresh;
+}
+
 /// Runs the cases, `parallel` at a time, and records exit codes and wall times.
-void run_cases(std::vector<Case>& cases, const scene::Sweep& sweep, const std::vector<std::string>& overrides,
-               int parallel) {
+void run_cases(std::vector<Case>& cases, const scene::Sweep& sweep, const SweepArguments& args,
+               const std::vector<std::string>& overrides, int parallel) {
   std::map<pid_t, std::pair<std::size_t, Clock::time_point>> running;
   std::size_t next = 0, done = 0;
   while (done < cases.size()) {
     while (next < cases.size() && static_cast<int>(running.size()) < parallel) {
-      Case& c = cases[next];
+      Case& c = cases[next++];
+      if (c.start == Start::Finished) {
+        fmt::print("[{}/{}] {} finished before (kept)\n", ++done, cases.size(), c.scene.name);
+        continue;
+      }
       fs::create_directories(c.run_dir);
       const fs::path log = c.run_dir / "run.log";
-      fs::remove(log);
-      running[spawn_process(run_arguments(c, sweep, overrides), log)] = {next, Clock::now()};
-      fmt::print("started  {} ({})\n", c.scene.name, c.scene_file.string());
-      ++next;
+      // A resumed run's log goes on after the stopped one's.
+      if (c.start == Start::Fresh) fs::remove(log);
+      running[spawn_process(run_arguments(c, sweep, args, overrides), log)] = {next - 1, Clock::now()};
+      fmt::print("{} {} ({})\n", c.start == Start::FromCheckpoint ? "resumed " : "started ", c.scene.name,
+                 c.scene_file.string());
     }
+    if (done == cases.size()) break;
     const Finished finished = wait_for_any_child();
     const auto it = running.find(finished.pid);
     if (it == running.end()) continue;
@@ -214,7 +282,12 @@ void run_sweep(const SweepArguments& args) {
   fmt::print("sweep {}: {} cases, {} at a time, {} thread(s) each, into {}\n", sweep.name, cases.size(), parallel,
              sweep.threads, out.string());
   fs::create_directories(out);
-  run_cases(cases, sweep, overrides, parallel);
+  if (args.resume)
+    for (Case& c : cases) decide_start(c);
+  run_cases(cases, sweep, args, overrides, parallel);
+  // A resumed case took the time of all its parts.
+  for (Case& c : cases)
+    if (c.start == Start::FromCheckpoint) c.wall_seconds = summary_wall(read_summary(c.run_dir)).value_or(c.wall_seconds);
 
   for (Case& c : cases) c.cracks = cracks_at(c.run_dir / "history.csv", sweep.crack_time);
   const fs::path table = out / "sweep.csv";
@@ -239,6 +312,12 @@ void register_sweep_command(CLI::App& app) {
       ->check(whole_number(1, kMaxParallelRuns));
   command->add_option("--set", args->overrides, "override a value of every case, e.g. --set mesh.blocks=1200")
       ->type_name("KEY=VALUE");
+  command->add_option("--checkpoint-every", args->checkpoint_every,
+                      "wall seconds between the checkpoints of each run (default: that of ddafrac run)")
+      ->check(non_negative_number());
+  command->add_flag("--resume", args->resume,
+                    "keep the cases that finished with the scene they have now, continue stopped or killed ones from "
+                    "their checkpoints, run the rest");
   command->callback([args] { run_sweep(*args); });
 }
 

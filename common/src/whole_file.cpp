@@ -1,7 +1,11 @@
 #include "ddafrac/common/whole_file.hpp"
 
+#include <fmt/core.h>
+
+#include <cerrno>
+#include <cstring>
 #include <fstream>
-#include <stdexcept>
+#include <optional>
 #include <system_error>
 
 namespace ddafrac::common {
@@ -36,12 +40,41 @@ void write_whole_file(const std::filesystem::path& target,
   }
 }
 
+namespace {
+
+constexpr double kBytesPerMegabyte = 1e6;
+
+/// Free bytes on the file system `target` would be written to (nothing if that cannot be told).
+std::optional<std::uintmax_t> free_bytes_for(const std::filesystem::path& target) {
+  std::error_code error;
+  const std::filesystem::path folder = target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  const std::filesystem::space_info space = std::filesystem::space(folder, error);
+  if (error) return std::nullopt;
+  return space.available;
+}
+
+/// Why `bytes` could not be written to `target`, which had `free_before` bytes free: a full
+/// disk (also when the system reported something else but the space was short), else the
+/// system's reason.
+std::string write_failure(const std::filesystem::path& target, std::size_t bytes,
+                          std::optional<std::uintmax_t> free_before, int error_number) {
+  if (error_number == ENOSPC || (free_before && *free_before < bytes))
+    return fmt::format("cannot write {}: the disk is full ({} MB free, the file needs {:.1f} MB)", target.string(),
+                       free_before ? fmt::format("{:.1f}", static_cast<double>(*free_before) / kBytesPerMegabyte) : "?",
+                       static_cast<double>(bytes) / kBytesPerMegabyte);
+  return fmt::format("cannot write {}: {}", target.string(), error_number != 0 ? std::strerror(error_number) : "write failed");
+}
+
+}  // namespace
+
 void write_whole_text(const std::filesystem::path& target, std::string_view text) {
   write_whole_file(target, [&](const std::filesystem::path& temporary) {
+    const std::optional<std::uintmax_t> free_before = free_bytes_for(temporary);
+    errno = 0;
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     out.write(text.data(), static_cast<std::streamsize>(text.size()));
     out.close();
-    if (!out) throw std::runtime_error("cannot write " + target.string());
+    if (!out) throw WriteError(write_failure(target, text.size(), free_before, errno));
   });
 }
 

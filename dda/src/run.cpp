@@ -30,7 +30,8 @@ namespace {
 
 /// The run directory's files besides the snapshots (vtk/snapshot_NNNNNN.vtu).
 const char* const kRunFiles[] = {"summary.json", "history.csv",  "cracks.csv", "crack_intervals.csv",
-                                 "gauges.csv",   "loading.csv", "run.pvd",    "checkpoint.bin"};
+                                 "gauges.csv",   "loading.csv", "run.pvd",    "checkpoint.bin",
+                                 "scene.resolved.toml"};
 
 /// NaN or infinity in a step's energies means NaN or infinity in the blocks' state.
 void check_finite(const StepReport& r) {
@@ -179,6 +180,21 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
     }
   };
 
+  // Written last, so that it never speaks of files that were not written.
+  auto write_summary = [&] {
+    r.wall = log.wall + omp_get_wtime() - t0;
+    r.steps = st.steps;
+    r.time = engine.time();
+    r.threads_fewest = log.threads_fewest;
+    r.thread_count_changes = log.thread_count_changes;
+    nlohmann::json summary = summary_json(engine, o, r, {{"peak", log.peaks}, {"unit", "N/m"}});
+    for (const RunLog::Resume& resume : log.resumes)
+      summary["resumed_from"].push_back({{"step", resume.step}, {"t", resume.time}});
+    ddafrac::common::write_whole_text(
+        o.out_dir / "summary.json",
+        summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  };
+
   auto write_outputs = [&](bool snapshot, bool state_valid = true) {
     const double w0 = omp_get_wtime();
     if (state_valid) sample_gauges();
@@ -195,20 +211,10 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
     }
     ddafrac::common::write_whole_text(o.out_dir / "history.csv", log.history);
     st.times.output += omp_get_wtime() - w0;
-    r.wall = log.wall + omp_get_wtime() - t0;
-    r.steps = st.steps;
-    r.time = engine.time();
-    r.threads_fewest = log.threads_fewest;
-    r.thread_count_changes = log.thread_count_changes;
-    nlohmann::json summary = summary_json(engine, o, r, {{"peak", log.peaks}, {"unit", "N/m"}});
-    for (const RunLog::Resume& resume : log.resumes)
-      summary["resumed_from"].push_back({{"step", resume.step}, {"t", resume.time}});
-    ddafrac::common::write_whole_text(
-        o.out_dir / "summary.json",
-        summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    write_summary();
   };
-
   r.reason = "running";
+  if (!sc.resolved_text.empty()) common::write_whole_text(o.out_dir / kResolvedSceneFile, sc.resolved_text);
   if (!o.resume) {
     sample_loading();
     write_outputs(true);
@@ -262,6 +268,17 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
     r.exit_status = kRunNumericalTrouble;
     r.reason = "numerical_trouble";
     r.message = ex.what();
+  } catch (const common::WriteError& ex) {
+    // Each file keeps its last whole version; more writing would fail as well. The summary is
+    // small: it may still fit, and then says why the run stopped.
+    r.exit_status = kRunWriteFailed;
+    r.reason = "write_failed";
+    r.message = ex.what();
+    try {
+      write_summary();
+    } catch (const common::WriteError&) {
+    }
+    return r;
   }
   // A run that stopped early can be resumed from where it stopped; a finished one has nothing
   // left to resume. After numerical trouble the last checkpoint stays (the state now may hold NaN).

@@ -5,9 +5,17 @@
 #include <filesystem>
 #include <functional>
 #include <regex>
+#include <stdexcept>
 #include <string_view>
 
 namespace ddafrac::common {
+
+/// A file that could not be written: the message names it and says why (a full disk says so,
+/// with the free space). The previous version of the file, if any, is left as it was.
+class WriteError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 /// Calls write(temporary) and renames the temporary file to `target`. The temporary name keeps
 /// the target's extension (gmsh and others pick the format from it). On failure the temporary
@@ -15,7 +23,7 @@ namespace ddafrac::common {
 void write_whole_file(const std::filesystem::path& target,
                       const std::function<void(const std::filesystem::path&)>& write);
 
-/// Writes `text` as the whole content of `target`. Throws std::runtime_error naming the file.
+/// Writes `text` as the whole content of `target`. Throws WriteError naming the file.
 void write_whole_text(const std::filesystem::path& target, std::string_view text);
 
 /// The temporary name write_whole_file writes `target` under: ".<stem>.partial<extension>".

@@ -1,21 +1,28 @@
 #pragma once
 // A whole run: the time loop driving an Engine to the scene's end time, writing the run
-// directory: summary.json, history.csv, vtk/*.vtu + run.pvd, and checkpoint.bin while the run
-// is unfinished. Every file is written whole (temporary name, then rename), so an interrupted or
-// failed run leaves valid files, and a checkpointed one can be resumed.
+// directory: summary.json, history.csv, vtk/*.vtu + run.pvd, scene.resolved.toml, and
+// checkpoint.bin while the run is unfinished. Every file is written whole (temporary name, then
+// rename), so an interrupted or failed run leaves valid files, and a checkpointed one can be
+// resumed.
 
 #include <atomic>
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 
 #include "ddafrac/dda/checkpoint.hpp"
 #include "ddafrac/dda/engine.hpp"
 
 namespace ddafrac::dda {
 
+/// The scene exactly as the run read it (Scene::resolved_text), written into the run directory:
+/// what reproduces the run, and what a resumed sweep compares to skip a finished case.
+inline constexpr std::string_view kResolvedSceneFile = "scene.resolved.toml";
+
 /// Exit status of a run (also the process exit code of `ddafrac run`).
-enum RunExit : int { kRunCompleted = 0, kRunNumericalTrouble = 3, kRunInterrupted = 130 };
+/// A file could not be written (a full disk): the files keep their last whole version.
+enum RunExit : int { kRunCompleted = 0, kRunNumericalTrouble = 3, kRunWriteFailed = 4, kRunInterrupted = 130 };
 /// A run stopped by signal s exits with 128 + s, as a shell reports it (130 SIGINT, 143 SIGTERM).
 inline constexpr int kSignalExitBase = 128;
 
@@ -63,7 +70,7 @@ struct RunOptions {
 /// prescribed bodies).
 struct RunResult {
   int exit_status = kRunCompleted;
-  std::string reason;   // "completed", "max_steps", "interrupted", "numerical_trouble"
+  std::string reason;   // "completed", "max_steps", "interrupted", "numerical_trouble", "write_failed"
   std::string message;  // for numerical trouble: step, time, worst block/contact
   long steps = 0;
   double time = 0.0;
