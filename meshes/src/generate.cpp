@@ -25,6 +25,10 @@ constexpr double kSizeGrowthRate = 0.4;       // m of size per m of distance fro
 constexpr double kMinSizeExponent = 1.0;      // bounds of the fitted N ~ h^-p law
 constexpr double kMaxSizeExponent = 3.0;
 constexpr double kAreaExponent = 2.0;         // N ~ h^-2 for a uniform 2D mesh
+/// Largest element size tried, as a fraction of the side of a square of the disc's area: larger
+/// elements no longer resolve the disc, and the cell count stops falling well before (a slot's
+/// graded ends keep hundreds of cells whatever the size far from them).
+constexpr double kLargestSizePerModelSide = 1.0;
 
 /// Edge length (m) of equilateral triangles that tile `area` (m^2) in `count` pieces.
 double equilateral_size(double area, double count) {
@@ -83,7 +87,8 @@ std::size_t mesh_disc(const detail::DiscModel& model, const DiscSizing& sizing, 
 /// Secant step on log N = c - p log h, with p bounded; plain N ~ h^-2 until two samples exist.
 class SizeSearch {
  public:
-  SizeSearch(double first_size, double target) : size_(first_size), target_(target) {}
+  SizeSearch(double first_size, double target, double largest_size)
+      : size_(std::min(first_size, largest_size)), target_(target), largest_size_(largest_size) {}
 
   double size() const { return size_; }
 
@@ -96,12 +101,16 @@ class SizeSearch {
     }
     previous_size_ = size_;
     previous_count_ = n;
-    size_ *= std::pow(n / target_, 1.0 / exponent);
+    size_ = std::min(largest_size_, size_ * std::pow(n / target_, 1.0 / exponent));
   }
+
+  /// At the largest size and still too many cells: no size gives fewer.
+  bool at_floor(std::size_t count) const { return size_ >= largest_size_ && static_cast<double>(count) > target_; }
 
  private:
   double size_;
   double target_;
+  double largest_size_;
   double previous_size_ = 0.0;
   double previous_count_ = 0.0;
 };
@@ -159,7 +168,8 @@ Mesh generate_dda_mesh(const Geometry& geometry, const MeshControl& control,
   return detail::gmsh_call("meshing the DDA disc", [&] {
     const detail::DiscModel model = detail::build_disc_model(geometry);
     const DiscSizing sizing(model);
-    SizeSearch search(equilateral_size(model.area, control.target_blocks), control.target_blocks);
+    const double largest_size = kLargestSizePerModelSide * std::sqrt(model.area);
+    SizeSearch search(equilateral_size(model.area, control.target_blocks), control.target_blocks, largest_size);
     std::size_t count = 0;
     double size = search.size();
     for (int iteration = 1; iteration <= control.max_iterations; ++iteration) {
@@ -171,11 +181,16 @@ Mesh generate_dda_mesh(const Geometry& geometry, const MeshControl& control,
         detail::append_rigid_bodies(geometry, mesh);
         return mesh;
       }
+      if (search.at_floor(count))
+        throw MeshError(fmt::format("this geometry meshes into no fewer than about {} disc blocks (at element size "
+                                    "{:.3g} m, the largest for a disc of {:.3g} m^2{}); mesh.blocks = {} asks for fewer",
+                                    count, size, model.area,
+                                    model.slot_corners.empty() ? "" : ": the slot's graded ends alone take hundreds",
+                                    control.target_blocks));
       search.record(count);
     }
     throw MeshError(fmt::format("no element size gave {} +- {:.1f}% disc blocks in {} iterations "
-                                "(last: {} blocks at {} m; with a slot, its graded ends alone take "
-                                "several hundred blocks)", control.target_blocks,
+                                "(last: {} blocks at {:.3g} m)", control.target_blocks,
                                 100.0 * control.block_tolerance, control.max_iterations, count,
                                 size));
   });
