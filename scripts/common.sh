@@ -35,7 +35,13 @@ ddafrac_install_dependencies() {
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
+# Configures the Release build and builds the named targets (every target when none is named:
+# the tests need them all, a run only the ddafrac executable).
 ddafrac_build() {
-  cmake -S "$DDAFRAC_ROOT" -B "$DDAFRAC_BUILD" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
-  cmake --build "$DDAFRAC_BUILD" -j "$(nproc)"
+  cmake -S "$DDAFRAC_ROOT" -B "$DDAFRAC_BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  if [ $# -gt 0 ]; then
+    cmake --build "$DDAFRAC_BUILD" -j "$(nproc)" --target "$@"
+  else
+    cmake --build "$DDAFRAC_BUILD" -j "$(nproc)"
+  fi
 }

@@ -4,6 +4,6 @@
 # in runs/default-impact/run/figures/. Usage: bash scripts/demo.sh [extra `ddafrac run` args]
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 ddafrac_install_dependencies
-ddafrac_build
+ddafrac_build ddafrac  # the executable only: the test command builds the rest
 cd "$DDAFRAC_ROOT"
 "$DDAFRAC_BUILD/app/ddafrac" run "$@"
