@@ -23,12 +23,12 @@
 #include "ddafrac/fem/static_problem.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "scene_source.hpp"
+#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::app {
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
 constexpr double default_load = 1.0e6;               // N/m, nominal diametral load
 constexpr double default_arc_half_angle_deg = 10.0;  // Hondros arcs when the geometry has none
 constexpr double elements_per_diameter = 25.0;       // default FEM element size D/25
@@ -91,7 +91,7 @@ nlohmann::json run_static(const FemArguments& args, const scene::Scene& s, meshe
   } else {
     const auto* plain = std::get_if<meshes::PlainDisc>(&s.geometry);
     const double alpha = plain && plain->load_half_angle > 0.0 ? plain->load_half_angle
-                                                                : args.arc_half_angle_deg * pi / 180.0;
+                                                                : args.arc_half_angle_deg * common::kPi / 180.0;
     const double pressure = args.load / (alpha * d);
     problem.load = fem::ArcPressure{pressure, alpha};
     load = {{"kind", "Hondros arc pressure"}, {"load_N_per_m", args.load},

@@ -28,6 +28,7 @@
 #include "ddafrac/scene/sweep.hpp"
 #include "figures.hpp"
 #include "subprocess.hpp"
+#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::app {
 
@@ -36,7 +37,7 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-constexpr double kDegree = 3.14159265358979323846 / 180.0;  // rad per degree
+constexpr double kDegree = common::kRadiansPerDegree;
 
 struct SweepArguments {
   std::string sweep_file;

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ddafrac/common/angles.hpp"
+
 namespace ddafrac::dda {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using common::kPi;
 }
 
 meshes::Mesh make_ring_disc_mesh(double diameter, int target_blocks, double plate_width, double plate_height) {

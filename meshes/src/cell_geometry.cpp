@@ -9,12 +9,13 @@
 #include <fmt/format.h>
 
 #include "ddafrac/meshes/generate.hpp"
+#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::meshes::detail {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using common::kPi;
 constexpr double kDegreesPerRadian = 180.0 / kPi;
 
 const Point& corner(const Mesh& mesh, std::size_t c, std::size_t k) {

@@ -11,12 +11,13 @@
 #include <fmt/format.h>
 
 #include "ddafrac/meshes/generate.hpp"
+#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::meshes::detail {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using common::kPi;
 constexpr double kMaxArcAngle = kPi / 2;  // rad; gmsh circle arcs must stay below pi
 constexpr double kSnapToAxis = 1e-15;     // relative; cos(pi/2) is not exactly zero
 constexpr double kSlotClearance = 0.02;   // slot corners stay this fraction of R inside the rim

@@ -12,6 +12,7 @@
 
 #include "document.hpp"
 #include "toml_reader.hpp"
+#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::scene {
 
@@ -28,7 +29,7 @@ using detail::Need;
 using detail::NumberRule;
 using detail::TableReader;
 
-constexpr double kDegree = 3.14159265358979323846 / 180.0;  // rad per degree
+constexpr double kDegree = common::kRadiansPerDegree;
 
 /// Shear stiffness of a joint set when the file gives none, as a share of its normal stiffness
 /// (ks = kn / 2.5, the usual choice in Shi's DDA codes).

@@ -12,6 +12,7 @@
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/dda/synthetic.hpp"
 #include "support.hpp"
+#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac;
 using namespace ddafrac::dda;
@@ -22,7 +23,7 @@ using testing::body;
 
 namespace {
 constexpr double kG = 9.81;  // m/s²
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
+constexpr double kDegree = common::kRadiansPerDegree;
 
 /// The block's rotation from its first edge (CCW from vertex 0 to vertex 1), radians.
 double block_angle(const Engine& e, Index b) {
@@ -348,7 +349,7 @@ BOOST_AUTO_TEST_CASE(a_spinning_block_keeps_its_area_and_energy) {
   e.blocks().velocity[0][kR] = omega;
   const double area0 = e.blocks().geometry[0].area;
   const double kinetic0 = e.energies().kinetic;
-  const int steps = static_cast<int>(std::ceil(2.0 * 3.14159265358979323846 / (omega * 1e-4)));
+  const int steps = static_cast<int>(std::ceil(2.0 * common::kPi / (omega * 1e-4)));
   for (int k = 0; k < steps; ++k) e.step();
   const double area_error = std::abs(e.blocks().geometry[0].area - area0) / area0;
   const double kinetic_error = std::abs(e.energies().kinetic - kinetic0) / kinetic0;

@@ -13,13 +13,14 @@
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/dda/synthetic.hpp"
 #include "support.hpp"
+#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac;
 using namespace ddafrac::dda;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using common::kPi;
 
 /// Rock-like scene with a virtual joint set (index 0) and a real one (index 1).
 scene::Scene joint_scene(double dt, double kn, double tensile, double cohesion, double phi_deg) {

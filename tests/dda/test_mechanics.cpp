@@ -6,6 +6,7 @@
 
 #include "ddafrac/dda/engine.hpp"
 #include "support.hpp"
+#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac;
 using namespace ddafrac::dda;
@@ -15,7 +16,7 @@ using testing::body;
 
 namespace {
 constexpr double kG = 9.81;  // m/s^2
-constexpr double kPi = 3.14159265358979323846;
+using common::kPi;
 
 double centroid_x(const Engine& e, Index b) { return e.blocks().geometry[static_cast<std::size_t>(b)].cx; }
 double centroid_y(const Engine& e, Index b) { return e.blocks().geometry[static_cast<std::size_t>(b)].cy; }

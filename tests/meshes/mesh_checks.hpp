@@ -11,10 +11,11 @@
 #include <vector>
 
 #include "ddafrac/meshes/mesh.hpp"
+#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::meshes::testing {
 
-constexpr double kPi = 3.14159265358979323846;
+using common::kPi;
 constexpr double kDegree = kPi / 180.0;
 
 inline long index_of(const std::vector<std::string>& names, const std::string& name) {

@@ -15,6 +15,7 @@
 
 #include "ddafrac/meshes/generate.hpp"
 #include "ddafrac/meshes/picture.hpp"
+#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac::meshes;
 namespace fs = std::filesystem;
@@ -86,7 +87,7 @@ BOOST_AUTO_TEST_CASE(flattened_disc_with_platens_keeps_its_aspect_ratio) {
   const int height = cairo_image_surface_get_height(surface.get());
   BOOST_TEST(width == 800);
   // 0.1 m wide; 2 (R cos 5 deg + 0.02) m tall; the margin adds 2 * 3% of the width to both.
-  const double model_height = 2 * (0.05 * std::cos(5.0 * M_PI / 180) + 0.02);
+  const double model_height = 2 * (0.05 * std::cos(5.0 * ddafrac::common::kPi / 180) + 0.02);
   const double margin = 2 * std::round(0.03 * width);
   const double expected = (width - margin) * model_height / 0.1 + margin;
   BOOST_TEST(std::abs(height - expected) <= 1.0);

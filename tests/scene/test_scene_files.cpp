@@ -8,12 +8,13 @@
 
 #include "ddafrac/scene/parse.hpp"
 #include "ddafrac/scene/sweep.hpp"
+#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac;
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
+constexpr double kDegree = common::kRadiansPerDegree;
 const fs::path kScenes = fs::path(DDAFRAC_SOURCE_DIR) / "scenes";
 }  // namespace
 

@@ -11,12 +11,13 @@
 
 #include "ddafrac/scene/parse.hpp"
 #include "ddafrac/scene/sweep.hpp"
+#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using common::kPi;
 
 // A complete, valid scene; each bad case below changes one thing in it. Line numbers in the
 // expectations refer to this text (line 1 is `name = ...`).
