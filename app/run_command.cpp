@@ -21,6 +21,7 @@
 #include "option_checks.hpp"
 #include "figures.hpp"
 #include "ddafrac/common/thread_governor.hpp"
+#include "ddafrac/dda/contact_period.hpp"
 #include "ddafrac/dda/run.hpp"
 #include "ddafrac/scene/parse.hpp"
 #include "scene_source.hpp"
@@ -151,6 +152,21 @@ void show_progress(const dda::Progress& p, bool tty) {
 }
 
 
+/// Warns when the longest step is not a small fraction of the shortest contact period: the
+/// blocks would rock and bounce on their contact springs rather than rest on them.
+void warn_if_contacts_are_unresolved(const dda::Engine& engine) {
+  const dda::ContactPeriod shortest = dda::shortest_contact_period(engine);
+  const double dt_max = engine.scene().analysis.dt_max;
+  if (shortest.period <= 0.0 || dt_max * dda::kMinStepsPerContactPeriod <= shortest.period) return;
+  fmt::print(stderr,
+             "warning: analysis.dt_max = {:.3g} s is {:.2g} steps per period of the stiffest contact spring on the "
+             "lightest blocks (T = 2π·√(m/2 / kn) = {:.3g} s, m = {:.3g} kg/m, kn = {:.3g} N/m); below {:g} steps "
+             "the time scheme cannot follow a contact and blocks rock and bounce: lower analysis.dt_max to at most "
+             "{:.3g} s or the contact stiffness (analysis.penalty, joints.*.normal_stiffness)\n",
+             dt_max, shortest.period / dt_max, shortest.period, shortest.mass, shortest.stiffness,
+             dda::kMinStepsPerContactPeriod, shortest.period / dda::kMinStepsPerContactPeriod);
+}
+
 /// What a checkpoint keeps of how the run was started: enough to rebuild it on resume.
 std::string invocation_of(const RunArguments& args, const scene::Scene& scene, const std::filesystem::path& out) {
   const std::string scene_file =
@@ -252,6 +268,8 @@ void run_run(const RunArguments& given) {
              engine->blocks().block_count(), engine->blocks().joints.size(), threads, dda::to_string(options.solver.kind),
              scene.analysis.end_time, out.string());
   std::fflush(stdout);
+
+  warn_if_contacts_are_unresolved(*engine);
 
   const bool tty = ::isatty(::fileno(stderr)) != 0;
   dda::RunOptions ro;

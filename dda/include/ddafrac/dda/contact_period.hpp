@@ -1,0 +1,25 @@
+#pragma once
+// The shortest period a contact spring can have in a model: two of its lightest blocks on the
+// stiffest spring, T = 2π·√(m_r / kn) with the reduced mass m_r = m/2. A time step that is not
+// a small fraction of it cannot follow the contact: blocks rock and bounce instead of resting.
+
+#include "ddafrac/dda/engine.hpp"
+
+namespace ddafrac::dda {
+
+/// Steps per contact period below which a run is warned. The time scheme (Newmark, average
+/// acceleration) lengthens an oscillator's period by about (ω·dt)²/12: 5% at 8 steps per
+/// period, and the error grows with the square of the step.
+inline constexpr double kMinStepsPerContactPeriod = 8.0;
+
+struct ContactPeriod {
+  double period = 0.0;     // s
+  double mass = 0.0;       // kg per unit thickness, of the lightest block
+  double stiffness = 0.0;  // N/m per unit thickness, the stiffest contact spring
+};
+
+/// Over the blocks that move (not fixed or prescribed) and the contact springs the engine has at
+/// t = 0 or will give a new contact (analysis.penalty). Zero period when nothing moves.
+ContactPeriod shortest_contact_period(const Engine& engine);
+
+}  // namespace ddafrac::dda
