@@ -11,16 +11,18 @@
 #include "ddafrac/meshes/generate.hpp"
 #include "gmsh_model_mesh.hpp"
 #include "gmsh_session.hpp"
+#include "msh_model.hpp"
 #include "ddafrac/common/whole_file.hpp"
 
 namespace ddafrac::meshes {
 
 namespace {
 
+using detail::kLine2;
+using detail::kQuadrangle4;
+using detail::kTriangle3;
+
 constexpr double kMshFileVersion = 4.1;
-constexpr int kLine2 = 1;
-constexpr int kTriangle3 = 2;
-constexpr int kQuadrangle4 = 3;
 constexpr Index kNoEntity = ~Index{0};
 
 /// gmsh tags are 1-based: node i, cell c, body b and group g get tags i+1, c+1, b+1, g+1.
