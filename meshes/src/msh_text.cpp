@@ -1,5 +1,6 @@
 #include "msh_text.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -264,13 +265,19 @@ int checked_element_type(MshText& in, int type) {
   return kind.dim;
 }
 
-/// The nodes of one element of `type`, each checked to be defined, appended to `nodes`.
+/// The nodes of one element of `type`, each checked to be defined and to be used once by the
+/// element (a repeated corner makes a cell with an edge of length zero), appended to `nodes`.
 void read_element_nodes(MshText& in, int type, std::size_t element, const MshModel& model,
                         std::vector<std::size_t>& nodes) {
-  for (std::size_t k = 0; k < linear_node_count(type); ++k) {
+  const std::size_t count = linear_node_count(type);
+  const std::size_t first = nodes.size();
+  for (std::size_t k = 0; k < count; ++k) {
     const std::size_t tag = node_tag(in);
     if (model.nodes.count(tag) == 0) {
       in.fail(fmt::format("element {} uses node {}, which $Nodes does not define", element, tag));
+    }
+    if (std::find(nodes.begin() + first, nodes.end(), tag) != nodes.end()) {
+      in.fail(fmt::format("element {} uses node {} twice; expected {} distinct nodes", element, tag, count));
     }
     nodes.push_back(tag);
   }

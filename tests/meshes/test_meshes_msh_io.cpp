@@ -168,6 +168,8 @@ BOOST_AUTO_TEST_CASE(malformed_sections_are_refused_with_their_line) {
               "order.msh:9: $Elements comes before $Nodes");
   check_error(dir.file("unclosed.msh", kFormat + "$Comments\nno end\n"), "no $EndComments closes the $Comments section");
   check_error(dir.file("noelements.msh", kFormat + kNames + nodes()), "has no $Elements section");
+  check_error(dir.file("repeated.msh", kFormat + kNames + nodes() + elements("1 3 2 2 1 1 2 3 3\n")),
+              "repeated.msh:18: element 1 uses node 3 twice; expected 4 distinct nodes");
   check_error(dir.file("type.msh", kFormat + kNames + nodes() + elements("1 99 2 2 1 1 2 3\n")),
               "type.msh:18: element type 99 is not one ddafrac reads");
 }
