@@ -1,7 +1,9 @@
-// libFuzzer target: any bytes as the text of a scene file, through the parser the app uses
-// (TOML syntax, `base` chains, every key's type, range and cross-checks). A SceneError is the
-// parser's answer to a bad scene; anything else (another exception, a crash, UB, a leak, a hang)
-// is a finding, and so is an accepted scene with a value no run can use.
+// libFuzzer target: any bytes as the text of a scene file and `--set` overrides, through the
+// parser the app uses (TOML syntax, `base` chains, overrides, every key's type, range and
+// cross-checks). The input is the scene text, then, after a NUL byte if any, one override a
+// line. A SceneError is the parser's answer to a bad scene; anything else (another exception, a
+// crash, UB, a leak, a hang) is a finding, and so is an accepted scene with a value no run can use.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -11,6 +13,7 @@
 #include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 #include "ddafrac/scene/parse.hpp"
 
@@ -100,9 +103,16 @@ void check_accepted_scene(const scene::Scene& s) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string text(reinterpret_cast<const char*>(data), size);
+  const std::string_view input(reinterpret_cast<const char*>(data), size);
+  const std::size_t end_of_scene = std::min(input.find('\0'), input.size());
+  std::vector<std::string> overrides;
+  for (std::size_t begin = end_of_scene + 1; begin < input.size();) {
+    const std::size_t end = std::min(input.find('\n', begin), input.size());
+    overrides.emplace_back(input.substr(begin, end - begin));
+    begin = end + 1;
+  }
   try {
-    check_accepted_scene(scene::parse_scene(text, kInputName));
+    check_accepted_scene(scene::parse_scene(std::string(input.substr(0, end_of_scene)), kInputName, overrides));
   } catch (const scene::SceneError&) {
   }
   return 0;
