@@ -3,7 +3,7 @@
 # Third-party libraries (gmsh, deal.II) are not instrumented; configure with
 # -DDDAFRAC_WITH_FEM=OFF, since deal.II under ASan is slow and not what is being tested.
 option(DDAFRAC_SANITIZE "Build with AddressSanitizer and UndefinedBehaviorSanitizer" OFF)
-if(DDAFRAC_SANITIZE)
+if(DDAFRAC_SANITIZE OR DDAFRAC_FUZZ)  # a fuzz build (cmake/DdafracFuzz.cmake) needs them too
   # Frame pointers keep the reports' stacks readable; -fno-sanitize-recover makes any UB fatal,
   # so a test cannot pass while the sanitizer complains.
   set(DDAFRAC_SANITIZE_FLAGS -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)

@@ -187,7 +187,9 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
   // joints, so the corner is judged as one vertex-vertex contact whatever the distance (up to
   // the deepest penetration kept) and the angle between the wedges, never as a vertex against
   // the far edge of the other wedge (docs/design.md, "Contacts at shared mesh nodes").
-  auto [node_v, node_u] = node_only_neighbours(s, a, b);
+  // Plain variables, not a structured binding: C++17 lets no lambda capture one (clang refuses).
+  Index node_v = -1, node_u = -1;
+  std::tie(node_v, node_u) = node_only_neighbours(s, a, b);
   if (node_v >= 0) {
     const double dx = w.x(node_v) - w.x(node_u), dy = w.y(node_v) - w.y(node_u);
     if (dx * dx + dy * dy > depth * depth) node_v = node_u = -1;

@@ -1,6 +1,6 @@
 #pragma once
-// Conversion of the mesh held in the current gmsh model into a Mesh, with the checks a
-// user's file needs: linear 2D cells only, in the plane z = 0, in named physical groups.
+// Conversion of the mesh held in the current gmsh model into a Mesh (through an MshModel, see
+// msh_model.hpp): linear 2D cells only, in the plane z = 0, in named physical groups.
 
 #include <string>
 

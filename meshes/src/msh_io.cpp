@@ -3,24 +3,28 @@
 #include <gmsh.h>
 
 #include <cstddef>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "ddafrac/meshes/generate.hpp"
-#include "gmsh_model_mesh.hpp"
 #include "gmsh_session.hpp"
+#include "msh_model.hpp"
+#include "msh_text.hpp"
 #include "ddafrac/common/whole_file.hpp"
 
 namespace ddafrac::meshes {
 
 namespace {
 
+using detail::kLine2;
+using detail::kQuadrangle4;
+using detail::kTriangle3;
+
 constexpr double kMshFileVersion = 4.1;
-constexpr int kLine2 = 1;
-constexpr int kTriangle3 = 2;
-constexpr int kQuadrangle4 = 3;
 constexpr Index kNoEntity = ~Index{0};
 
 /// gmsh tags are 1-based: node i, cell c, body b and group g get tags i+1, c+1, b+1, g+1.
@@ -117,19 +121,22 @@ void write_msh(const Mesh& mesh, const std::filesystem::path& path) {
   });
 }
 
+Mesh parse_msh(std::string_view text, const std::filesystem::path& file_name) {
+  const std::string source = file_name.string();
+  return detail::mesh_from_model(detail::parse_msh_text(text, source), source);
+}
+
 Mesh read_msh(const std::filesystem::path& path) {
   const std::string file = path.string();
   std::error_code error_code;
   if (!std::filesystem::is_regular_file(path, error_code)) {
     throw MeshError(file + ": no such file");
   }
-  detail::GmshSession session;
-  return detail::gmsh_call(file + ": gmsh cannot read it", [&] {
-    gmsh::open(file);
-    const std::string error = detail::gmsh_last_error();
-    if (!error.empty()) throw MeshError(file + ": gmsh cannot read it: " + error);
-    return detail::mesh_from_gmsh_model(file);
-  });
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw MeshError(file + ": cannot open it");
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw MeshError(file + ": cannot read it");
+  return parse_msh(text, path);
 }
 
 }  // namespace ddafrac::meshes

@@ -372,9 +372,11 @@ SceneError::SceneError(std::vector<Problem> problems)
       }()),
       problems_(std::move(problems)) {}
 
-Scene parse_scene(const std::string& toml_text, const std::filesystem::path& file_name) {
+Scene parse_scene(const std::string& toml_text, const std::filesystem::path& file_name,
+                  const std::vector<std::string>& overrides) {
   Diagnostics diagnostics(file_name.string());
-  const toml::table document = detail::load_document(toml_text, file_name, diagnostics);
+  toml::table document = detail::load_document(toml_text, file_name, diagnostics);
+  detail::apply_overrides(document, overrides, diagnostics);
   if (!diagnostics.empty()) throw SceneError(diagnostics.take());
   Scene scene = parse_document(document, file_name, diagnostics);
   if (!diagnostics.empty()) throw SceneError(diagnostics.take());
@@ -388,13 +390,7 @@ Scene load_scene(const std::filesystem::path& path, const std::vector<std::strin
   Diagnostics diagnostics(path.string());
   const std::optional<std::string> text = detail::read_text(path, diagnostics);
   if (!text) throw SceneError(diagnostics.take());
-  toml::table document = detail::load_document(*text, path, diagnostics);
-  detail::apply_overrides(document, overrides, diagnostics);
-  if (!diagnostics.empty()) throw SceneError(diagnostics.take());
-  Scene scene = parse_document(document, path, diagnostics);
-  if (!diagnostics.empty()) throw SceneError(diagnostics.take());
-  scene.resolved_text = toml_text_of(document);
-  return scene;
+  return parse_scene(*text, path, overrides);
 }
 
 void check_bodies_against_mesh(const Scene& scene, const std::vector<std::string>& mesh_bodies) {

@@ -140,7 +140,56 @@ BOOST_AUTO_TEST_CASE(nodes_off_the_plane) {
 
 BOOST_AUTO_TEST_CASE(not_a_mesh_file) {
   TempDir dir;
-  check_error(dir.file("garbage.msh", "this is not a gmsh file\n"), "gmsh cannot read it");
+  check_error(dir.file("garbage.msh", "this is not a gmsh file\n"), "garbage.msh:1: expected $MeshFormat");
+  check_error(dir.file("empty.msh", ""), "the file ends where $MeshFormat was expected");
+}
+
+// ddafrac reads .msh files itself (gmsh's reader crashes on malformed ones): every error names
+// the line and what was expected there.
+BOOST_AUTO_TEST_CASE(versions_and_encodings_it_does_not_read) {
+  TempDir dir;
+  check_error(dir.file("v40.msh", "$MeshFormat\n4 0 8\n$EndMeshFormat\n"), "v40.msh:2: MSH version \"4\" is not read");
+  check_error(dir.file("binary.msh", "$MeshFormat\n4.1 1 8\n"), "binary.msh:2: a binary .msh file is not read");
+  check_error(dir.file("v1.msh", "$NOD\n1\n1 0 0 0\n$ENDNOD\n"), "v1.msh:1: MSH version 1 is not read");
+}
+
+BOOST_AUTO_TEST_CASE(malformed_sections_are_refused_with_their_line) {
+  TempDir dir;
+  const std::string undefined_node = "1 2 2 2 1 1 2 9\n";
+  check_error(dir.file("undefined.msh", kFormat + kNames + nodes() + elements(undefined_node)),
+              "undefined.msh:18: element 1 uses node 9, which $Nodes does not define");
+  check_error(dir.file("short.msh", kFormat + kNames + "$Nodes\n4\n1 0 0 0\n$EndNodes\n"),
+              "short.msh:12: expected a node tag (an integer >= 1), got \"$EndNodes\"");
+  check_error(dir.file("nan.msh", kFormat + kNames + "$Nodes\n1\n1 nan 0 0\n$EndNodes\n"),
+              "nan.msh:11: expected a coordinate of node 1 (a finite number), got \"nan\"");
+  check_error(dir.file("twice.msh", kFormat + kNames + nodes() + nodes() + elements(kTriangles)),
+              "twice.msh:16: a second $Nodes section");
+  check_error(dir.file("order.msh", kFormat + kNames + elements(kTriangles) + nodes()),
+              "order.msh:9: $Elements comes before $Nodes");
+  check_error(dir.file("unclosed.msh", kFormat + "$Comments\nno end\n"), "no $EndComments closes the $Comments section");
+  check_error(dir.file("noelements.msh", kFormat + kNames + nodes()), "has no $Elements section");
+  check_error(dir.file("repeated.msh", kFormat + kNames + nodes() + elements("1 3 2 2 1 1 2 3 3\n")),
+              "repeated.msh:18: element 1 uses node 3 twice; expected 4 distinct nodes");
+  check_error(dir.file("type.msh", kFormat + kNames + nodes() + elements("1 99 2 2 1 1 2 3\n")),
+              "type.msh:18: element type 99 is not one ddafrac reads");
+}
+
+// MSH 4.1 names the entity of every block: a block of lines in a surface (which gmsh would
+// have taken as cells of four nodes) is refused.
+BOOST_AUTO_TEST_CASE(msh41_blocks_of_the_wrong_dimension_or_entity) {
+  TempDir dir;
+  const std::string head = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+                           "$PhysicalNames\n1\n2 1 \"disc\"\n$EndPhysicalNames\n"
+                           "$Entities\n0 0 1 0\n1 0 0 0 1 1 0 1 1 0\n$EndEntities\n"
+                           "$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n";
+  const Mesh mesh = read_msh(dir.file("good.msh", head + "$Elements\n1 1 1 1\n2 1 2 1\n1 1 2 3\n$EndElements\n"));
+  BOOST_TEST(mesh.cell_count() == 1u);
+  check_error(dir.file("lines.msh", head + "$Elements\n1 1 1 1\n2 1 1 1\n1 1 2\n$EndElements\n"),
+              "lines.msh:24: Line 2 elements in surface 1; expected elements of dimension 2 there");
+  check_error(dir.file("entity.msh", head + "$Elements\n1 1 1 1\n2 7 2 1\n1 1 2 3\n$EndElements\n"),
+              "entity.msh:24: elements of surface 7, which $Entities does not list");
+  check_error(dir.file("count.msh", head + "$Elements\n1 2 1 2\n2 1 2 1\n1 1 2 3\n$EndElements\n"),
+              "count.msh:25: the section announces 2 elements, its blocks hold 1");
 }
 
 BOOST_AUTO_TEST_CASE(msh_file_geometry_is_read_and_written_files_are_reproducible) {

@@ -1,6 +1,6 @@
 #pragma once
 // gmsh-based meshing of the scene geometries. Deterministic: the same input gives the same mesh.
-// gmsh keeps global state: call these functions (and read_msh/write_msh) from one thread at a
+// gmsh keeps global state: call these functions (and write_msh) from one thread at a
 // time; each call initialises and finalises gmsh itself.
 
 #include <stdexcept>

@@ -33,7 +33,9 @@ class SceneError : public std::runtime_error {
 
 /// Parses TOML text (file_name is used in messages and to resolve relative paths: `base`, the
 /// .msh file). A scene may name a `base` scene file whose tables it extends and overrides.
-Scene parse_scene(const std::string& toml_text, const std::filesystem::path& file_name);
+/// `overrides` replace values before validation, as in load_scene.
+Scene parse_scene(const std::string& toml_text, const std::filesystem::path& file_name,
+                  const std::vector<std::string>& overrides = {});
 
 /// Reads and parses a scene file.
 Scene load_scene(const std::filesystem::path& path);
