@@ -155,16 +155,18 @@ void show_progress(const dda::Progress& p, bool tty) {
 /// Warns when the longest step is not a small fraction of the shortest contact period: the
 /// blocks would rock and bounce on their contact springs rather than rest on them.
 void warn_if_contacts_are_unresolved(const dda::Engine& engine) {
-  const dda::ContactPeriod shortest = dda::shortest_contact_period(engine);
   const double dt_max = engine.scene().analysis.dt_max;
-  if (shortest.period <= 0.0 || dt_max * dda::kMinStepsPerContactPeriod <= shortest.period) return;
+  const dda::ContactPeriod shortest = dda::shortest_contact_period(engine, dt_max);
+  if (shortest.unresolved_blocks == 0) return;
   fmt::print(stderr,
              "warning: analysis.dt_max = {:.3g} s is {:.2g} steps per period of the stiffest contact spring on the "
-             "lightest blocks (T = 2π·√(m/2 / kn) = {:.3g} s, m = {:.3g} kg/m, kn = {:.3g} N/m); below {:g} steps "
-             "the time scheme cannot follow a contact and blocks rock and bounce: lower analysis.dt_max to at most "
-             "{:.3g} s or the contact stiffness (analysis.penalty, joints.*.normal_stiffness)\n",
-             dt_max, shortest.period / dt_max, shortest.period, shortest.mass, shortest.stiffness,
-             dda::kMinStepsPerContactPeriod, shortest.period / dda::kMinStepsPerContactPeriod);
+             "lightest block (T = 2π·√(m/2 / kn) = {:.3g} s, m = {:.3g} kg/m at ({:.4g}, {:.4g}) m, kn = {:.3g} N/m), "
+             "and fewer than {:g} for {} of {} moving blocks: the time scheme does not follow their contact "
+             "oscillations, and such a block resting on a contact rocks and bounces. Lower analysis.dt_max to at most {:.3g} s or the contact stiffness "
+             "(analysis.penalty, joints.*.normal_stiffness), or mesh without such small blocks\n",
+             dt_max, shortest.period / dt_max, shortest.period, shortest.mass, shortest.x, shortest.y,
+             shortest.stiffness, dda::kMinStepsPerContactPeriod, shortest.unresolved_blocks, shortest.moving_blocks,
+             shortest.period / dda::kMinStepsPerContactPeriod);
 }
 
 /// What a checkpoint keeps of how the run was started: enough to rebuild it on resume.

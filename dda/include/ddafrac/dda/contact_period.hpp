@@ -16,10 +16,15 @@ struct ContactPeriod {
   double period = 0.0;     // s
   double mass = 0.0;       // kg per unit thickness, of the lightest block
   double stiffness = 0.0;  // N/m per unit thickness, the stiffest contact spring
+  double x = 0.0, y = 0.0;  // m, centroid of the lightest block
+  /// Moving blocks whose own period on the stiffest spring is shorter than `dt` times
+  /// kMinStepsPerContactPeriod (the `dt` passed in).
+  std::size_t unresolved_blocks = 0;
+  std::size_t moving_blocks = 0;
 };
 
 /// Over the blocks that move (not fixed or prescribed) and the contact springs the engine has at
 /// t = 0 or will give a new contact (analysis.penalty). Zero period when nothing moves.
-ContactPeriod shortest_contact_period(const Engine& engine);
+ContactPeriod shortest_contact_period(const Engine& engine, double dt);
 
 }  // namespace ddafrac::dda
