@@ -2,9 +2,11 @@
 
 #include <gmsh.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <fstream>
 #include <iterator>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -98,6 +100,37 @@ void add_named_groups(int dim, const std::vector<std::string>& names) {
   }
 }
 
+/// Refuses two nodes of one body at the same place: the cells around them would not be joined
+/// (no virtual joint), and the DDA would run with a cut the user never drew.
+void refuse_coincident_nodes(const Mesh& mesh, const std::string& source) {
+  struct Use {
+    Index body;
+    double x, y;
+    Index node;
+  };
+  std::vector<Use> uses;
+  uses.reserve(mesh.cell_nodes.size());
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c)
+    for (const Index* n = mesh.cell_begin(c); n != mesh.cell_begin(c) + mesh.cell_size(c); ++n)
+      uses.push_back({mesh.cell_body[c], mesh.nodes[static_cast<std::size_t>(*n)].x,
+                      mesh.nodes[static_cast<std::size_t>(*n)].y, *n});
+  const auto place = [](const Use& u) { return std::tie(u.body, u.x, u.y); };
+  std::sort(uses.begin(), uses.end(), [&](const Use& a, const Use& b) {
+    return std::tie(a.body, a.x, a.y, a.node) < std::tie(b.body, b.x, b.y, b.node);
+  });
+  for (std::size_t k = 1; k < uses.size(); ++k) {
+    const Use& a = uses[k - 1];
+    const Use& b = uses[k];
+    if (place(a) != place(b) || a.node == b.node) continue;
+    throw MeshError(fmt::format(
+        "{}: two nodes of body \"{}\" are at the same place ({:.9g}, {:.9g}) m, so the cells around them are not "
+        "joined there; merge them (in gmsh: Geometry.AutoCoherence, or Tools > Options > Mesh > Remove duplicate "
+        "nodes)",
+        source, mesh.body_names[static_cast<std::size_t>(a.body)], a.x, a.y));
+  }
+}
+
+
 }  // namespace
 
 void write_msh(const Mesh& mesh, const std::filesystem::path& path) {
@@ -123,7 +156,9 @@ void write_msh(const Mesh& mesh, const std::filesystem::path& path) {
 
 Mesh parse_msh(std::string_view text, const std::filesystem::path& file_name) {
   const std::string source = file_name.string();
-  return detail::mesh_from_model(detail::parse_msh_text(text, source), source);
+  Mesh mesh = detail::mesh_from_model(detail::parse_msh_text(text, source), source);
+  refuse_coincident_nodes(mesh, source);
+  return mesh;
 }
 
 Mesh read_msh(const std::filesystem::path& path) {

@@ -23,8 +23,8 @@ struct ContactPeriod {
   std::size_t moving_blocks = 0;
 };
 
-/// Over the blocks that move (not fixed or prescribed) and the contact springs the engine has at
-/// t = 0 or will give a new contact (analysis.penalty). Zero period when nothing moves.
+/// Over the blocks that move (not fixed or prescribed) and the stiffest spring a contact can
+/// get (analysis.penalty, or a joint set's own normal stiffness). Zero period when nothing moves.
 ContactPeriod shortest_contact_period(const Engine& engine, double dt);
 
 }  // namespace ddafrac::dda
