@@ -315,6 +315,13 @@ void run_run(const RunArguments& given) {
                "share only a mesh node and overlap through the compliance of the joints around it (see "
                "missed_contacts in summary.json and the stability study in the README)\n",
                st.missed_contacts, st.deepest_missed, engine->allowed_displacement());
+  if (st.initial_overlaps > 0)
+    fmt::print(stderr,
+               "warning: at t = 0, {} contact(s) already overlapped by more than one step's allowed displacement "
+               "(deepest {:.3g} m, allowed {:.3g} m): cells or bodies of the mesh interpenetrate, and their springs "
+               "pushed them apart in the first step (initial_overlaps in summary.json); check the mesh and the "
+               "bodies' placement\n",
+               st.initial_overlaps, st.deepest_initial_overlap, engine->allowed_displacement());
   const dda::EnergyLedger& ledger = engine->ledger();
   if (ledger.largest_balance_error > args.energy_tolerance)
     fmt::print(stderr,

@@ -123,9 +123,10 @@ void Engine::detect() {
   const auto nc = static_cast<std::int64_t>(set_.contacts.size());
   saved_slide_sign_.resize(set_.contacts.size());
   const bool first = step_ == 0;
-  long missed = 0, cohesive = 0;
-  double deepest = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : missed, cohesive) reduction(max : deepest)
+  long missed = 0, cohesive = 0, overlapping = 0;
+  double deepest = 0.0, deepest_overlap = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : missed, cohesive, overlapping) \
+    reduction(max : deepest, deepest_overlap)
   for (std::int64_t k = 0; k < nc; ++k) {
     Contact& c = set_.contacts[k];
     const bool bonded = c.bonded(blocks_.joints);
@@ -138,6 +139,12 @@ void Engine::detect() {
       ++missed;
       deepest = std::max(deepest, -c.d0);
     }
+    // At t = 0 no two blocks may overlap by more than one step's allowed displacement: deeper,
+    // the mesh's cells or bodies interpenetrate (Statistics::initial_overlaps).
+    if (first && !bonded && -c.d0 > allowed_) {
+      ++overlapping;
+      deepest_overlap = std::max(deepest_overlap, -c.d0);
+    }
     linearise_contact(c, blocks_);
     saved_slide_sign_[k] = c.slide_sign;
   }
@@ -145,6 +152,10 @@ void Engine::detect() {
   if (first) active_.cohesion = cohesive > 0;
   stats_.missed_contacts += missed;
   stats_.deepest_missed = std::max(stats_.deepest_missed, deepest);
+  if (first) {
+    stats_.initial_overlaps = overlapping;
+    stats_.deepest_initial_overlap = deepest_overlap;
+  }
 }
 
 void Engine::start_cohesive(Contact& c) const {

@@ -3,9 +3,11 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <tuple>
 #include <string>
 #include <vector>
@@ -130,6 +132,81 @@ void refuse_coincident_nodes(const Mesh& mesh, const std::string& source) {
   }
 }
 
+/// A cell's corners, in order.
+std::vector<Point> corners_of(const Mesh& mesh, std::size_t c) {
+  std::vector<Point> corners;
+  for (const Index* n = mesh.cell_begin(c); n != mesh.cell_begin(c) + mesh.cell_size(c); ++n)
+    corners.push_back(mesh.nodes[static_cast<std::size_t>(*n)]);
+  return corners;
+}
+
+/// Whether two convex cells share area (separating axes: the edge normals of both); cells that
+/// only touch along an edge or at a corner, within `slack` (m), do not.
+bool convex_cells_overlap(const std::vector<Point>& a, const std::vector<Point>& b, double slack) {
+  for (const std::vector<Point>* polygon : {&a, &b}) {
+    for (std::size_t k = 0; k < polygon->size(); ++k) {
+      const Point& p = (*polygon)[k];
+      const Point& q = (*polygon)[(k + 1) % polygon->size()];
+      const double nx = q.y - p.y, ny = p.x - q.x;
+      const double length = std::hypot(nx, ny);
+      auto extent = [&](const std::vector<Point>& points) {
+        double low = std::numeric_limits<double>::infinity(), high = -low;
+        for (const Point& r : points) {
+          const double s = (r.x * nx + r.y * ny) / length;
+          low = std::min(low, s);
+          high = std::max(high, s);
+        }
+        return std::pair{low, high};
+      };
+      const auto [a_low, a_high] = extent(a);
+      const auto [b_low, b_high] = extent(b);
+      if (a_high <= b_low + slack || b_high <= a_low + slack) return false;
+    }
+  }
+  return true;
+}
+
+/// Refuses cells that overlap (within a body or between bodies): the DDA would start with
+/// blocks inside each other, deeper than any contact it can see.
+void refuse_overlapping_cells(const Mesh& mesh, const std::string& source) {
+  const std::size_t n = mesh.cell_count();
+  std::vector<std::vector<Point>> corners(n);
+  std::vector<double> xmin(n), xmax(n), ymin(n), ymax(n);
+  double extent = 0.0;
+  for (std::size_t c = 0; c < n; ++c) {
+    corners[c] = corners_of(mesh, c);
+    xmin[c] = ymin[c] = std::numeric_limits<double>::infinity();
+    xmax[c] = ymax[c] = -xmin[c];
+    for (const Point& p : corners[c]) {
+      xmin[c] = std::min(xmin[c], p.x);
+      xmax[c] = std::max(xmax[c], p.x);
+      ymin[c] = std::min(ymin[c], p.y);
+      ymax[c] = std::max(ymax[c], p.y);
+    }
+    extent = std::max({extent, xmax[c] - xmin[c], ymax[c] - ymin[c]});
+  }
+  // Touching cells meet within rounding of their coordinates, not more.
+  constexpr double kTouchingSlackPerCellSize = 1e-9;
+  const double slack = kTouchingSlackPerCellSize * extent;
+  std::vector<std::size_t> by_left(n);
+  for (std::size_t c = 0; c < n; ++c) by_left[c] = c;
+  std::sort(by_left.begin(), by_left.end(), [&](std::size_t a, std::size_t b) { return xmin[a] < xmin[b]; });
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t a = by_left[i];
+    for (std::size_t j = i + 1; j < n && xmin[by_left[j]] < xmax[a] - slack; ++j) {
+      const std::size_t b = by_left[j];
+      if (ymin[b] >= ymax[a] - slack || ymin[a] >= ymax[b] - slack) continue;
+      if (!convex_cells_overlap(corners[a], corners[b], slack)) continue;
+      throw MeshError(fmt::format(
+          "{}: two cells overlap near ({:.6g}, {:.6g}) m (bodies \"{}\" and \"{}\"): the blocks would start inside "
+          "each other; fix the mesh or the placement of its bodies",
+          source, 0.5 * (std::max(xmin[a], xmin[b]) + std::min(xmax[a], xmax[b])),
+          0.5 * (std::max(ymin[a], ymin[b]) + std::min(ymax[a], ymax[b])),
+          mesh.body_names[static_cast<std::size_t>(mesh.cell_body[a])],
+          mesh.body_names[static_cast<std::size_t>(mesh.cell_body[b])]));
+    }
+  }
+}
 
 }  // namespace
 
@@ -158,6 +235,7 @@ Mesh parse_msh(std::string_view text, const std::filesystem::path& file_name) {
   const std::string source = file_name.string();
   Mesh mesh = detail::mesh_from_model(detail::parse_msh_text(text, source), source);
   refuse_coincident_nodes(mesh, source);
+  refuse_overlapping_cells(mesh, source);
   return mesh;
 }
 

@@ -230,6 +230,25 @@ BOOST_AUTO_TEST_CASE(a_restored_state_continues_bit_for_bit) {
   BOOST_TEST(Engine(s, m).carried_state() == Engine(s, m).carried_state());
 }
 
+// Bodies that interpenetrate at t = 0 are reported: the plate raised into the disc by twice the
+// allowed step displacement gives overlapping contacts at the first step, the deepest exactly that
+// deep; the plate where it belongs gives none.
+BOOST_AUTO_TEST_CASE(an_overlap_at_the_start_is_counted) {
+  const scene::Scene s = make_impact_scene(3.5, 1e-3);
+  meshes::Mesh touching = make_ring_disc_mesh(0.1, 600);
+  Engine reference(s, touching);
+  const double overlap = 2.0 * reference.allowed_displacement();
+  meshes::Mesh raised = touching;
+  constexpr std::size_t kPlateCorners = 4;  // the plate is the mesh's last cell, a rectangle
+  for (std::size_t k = raised.nodes.size() - kPlateCorners; k < raised.nodes.size(); ++k) raised.nodes[k].y += overlap;
+  Engine overlapping(s, raised);
+  reference.step();
+  overlapping.step();
+  BOOST_TEST(reference.statistics().initial_overlaps == 0);
+  BOOST_TEST(overlapping.statistics().initial_overlaps > 0);
+  BOOST_TEST(overlapping.statistics().deepest_initial_overlap == overlap, boost::test_tools::tolerance(1e-9));
+}
+
 // PCG with block-Jacobi agrees with the sparse LDLT to the PCG tolerance (1e-12 relative residual
 // on a well-conditioned dynamic system gives ~1e-10 relative solution error).
 BOOST_AUTO_TEST_CASE(pcg_matches_direct_solver) {

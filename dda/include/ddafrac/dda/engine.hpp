@@ -106,6 +106,10 @@ struct Statistics {
   // wrecks the run (stability study).
   long missed_contacts = 0;
   double deepest_missed = 0.0;  // m
+  // Contacts of the first step overlapping by more than one step's allowed displacement: the
+  // mesh's cells or bodies interpenetrate at t = 0, and their springs push them apart at once.
+  long initial_overlaps = 0;
+  double deepest_initial_overlap = 0.0;  // m
   long pair_list_builds = 0;    // contact pair list (Verlet list) builds
   PhaseTimes times;
 };
