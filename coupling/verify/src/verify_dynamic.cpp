@@ -14,7 +14,7 @@
 #include <variant>
 
 #include "ddafrac/common/whole_file.hpp"
-#include "ddafrac/coupling/analytic.hpp"
+#include "ddafrac/reference/analytic.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/dda/run.hpp"
@@ -23,6 +23,15 @@
 #include "ddafrac/scene/scene.hpp"
 
 namespace ddafrac::coupling {
+
+using reference::arrival_time;
+using reference::compare_histories;
+using reference::Elastic;
+using reference::History;
+using reference::impact_plane_wave_stress;
+using reference::p_wave_speed;
+using reference::peak_of;
+using reference::PlaneModel;
 
 namespace {
 

@@ -27,8 +27,8 @@
 #include <variant>
 
 #include "ddafrac/common/whole_file.hpp"
-#include "ddafrac/coupling/analytic.hpp"
-#include "ddafrac/coupling/compare.hpp"
+#include "ddafrac/reference/analytic.hpp"
+#include "ddafrac/reference/compare.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/fem/static_problem.hpp"
@@ -36,6 +36,10 @@
 #include "ddafrac/scene/scene.hpp"
 
 namespace ddafrac::coupling {
+
+using reference::Disc;
+using reference::HondrosLoad;
+using reference::Stress2;
 
 namespace {
 
@@ -420,7 +424,7 @@ FieldError field_error(const std::vector<BlockResult>& blocks, Tensor BlockResul
     axy.push_back(w * p.xy);
     rxy.push_back(w * q.xy);
   }
-  return {relative_l2_error(a, r), relative_l2_error(axx, rxx), relative_l2_error(ayy, ryy), relative_l2_error(axy, rxy)};
+  return {reference::relative_l2_error(a, r), reference::relative_l2_error(axx, rxx), reference::relative_l2_error(ayy, ryy), reference::relative_l2_error(axy, rxy)};
 }
 
 /// Area-weighted mean over the blocks whose centroid lies within `radius` of the centre.
@@ -481,7 +485,7 @@ VerificationReport verify_static(const scene::Scene& scene, const VerifyOptions&
     } else {
       ++missing;
     }
-    if (st.analytic) b.ana = from(hondros_series(disc, hondros, b.x, b.y));
+    if (st.analytic) b.ana = from(reference::hondros_series(disc, hondros, b.x, b.y));
   }
 
   // Centre: area-weighted means over the blocks within R/10 of the centre, every source
@@ -491,7 +495,7 @@ VerificationReport verify_static(const scene::Scene& scene, const VerifyOptions&
   const Tensor c_fem = centre_mean(dda.blocks, &BlockResult::fem, centre_radius);
   const Tensor c_ana = centre_mean(dda.blocks, &BlockResult::ana, centre_radius);
   const bool has_centre = !st.slit;
-  const Stress2 point_ana = hondros_centre(disc, hondros);
+  const Stress2 point_ana = reference::hondros_centre(disc, hondros);
 
   const FieldError e_fem = field_error(dda.blocks, &BlockResult::dda, &BlockResult::fem);
   const double inner_radius = 0.8 * st.radius;  // away from the loaded arcs and flats
@@ -558,7 +562,7 @@ VerificationReport verify_static(const scene::Scene& scene, const VerifyOptions&
       if (blk < 0 || !f) continue;  // inside a slit or just outside a polygonal rim
       const auto& s = blocks.stress[static_cast<std::size_t>(blk)];
       Tensor a{std::nan(""), std::nan(""), std::nan("")};
-      if (st.analytic) a = from(hondros_series(disc, hondros, x, y));
+      if (st.analytic) a = from(reference::hondros_series(disc, hondros, x, y));
       prof << fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", name,
                           x0 == x1 ? y : x, x, y, s[0], s[1], s[2], f->xx, f->yy, f->xy, a.xx, a.yy, a.xy);
     }
@@ -647,7 +651,7 @@ VerificationReport verify_static(const scene::Scene& scene, const VerifyOptions&
       md << fmt::format("| Hondros | {} | {} | {} |\n", mpa(c_ana.xx), mpa(c_ana.yy), mpa(c_ana.xy));
       md << fmt::format("| Hondros at the centre point | {} | {} | 0 |\n", mpa(point_ana.xx), mpa(point_ana.yy));
     } else if (st.flattened) {
-      const auto arc = flattened_disc_centre_arc_mapped(disc, st.load, 2 * st.half_angle);
+      const auto arc = reference::flattened_disc_centre_arc_mapped(disc, st.load, 2 * st.half_angle);
       md << fmt::format("| arc-mapped approximation at the centre (not checked) | {} | {} | 0 |\n", mpa(arc.xx), mpa(arc.yy));
     }
     md << fmt::format("\nDDA vs FEM: σxx {:.2f}%, σyy {:.2f}%", 100 * rel(c_dda.xx, c_fem.xx), 100 * rel(c_dda.yy, c_fem.yy));

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "ddafrac/coupling/compare.hpp"
+#include "ddafrac/reference/compare.hpp"
 #include "ddafrac/coupling/verify.hpp"
 
 namespace ddafrac::coupling {
@@ -48,7 +48,7 @@ struct ImpactSettings {
 /// Stress histories at the scene's gauges (σyy and σ1, Pa) and what the run cost.
 struct GaugeHistories {
   std::vector<std::string> names;
-  std::vector<History> syy, s1;
+  std::vector<reference::History> syy, s1;
   std::vector<bool> near_slot;  // per gauge: closer to the joint slot than one DDA block
   std::vector<double> earliest_arrival;  // per gauge, s: distance from the impact patch / c_p
   double plane_wave_stress = 0.0;  // Pa, |ρ c_p v0| of the scene: the scale of the arrival level
@@ -74,7 +74,7 @@ GaugeHistories run_impact_fem(const scene::Scene& scene, const ImpactSettings& s
 /// Per gauge, σyy of a model against the reference.
 struct GaugeError {
   std::string gauge;
-  HistoryComparison syy;        // RMS/peak, peaks, arrivals
+  reference::HistoryComparison syy;      // RMS/peak, peaks, arrivals
   double peak_error = 0.0;      // (|peak| − |peak_ref|) / |peak_ref|: negative = the model's peak is smaller
   double arrival_error = 0.0;   // (t − t_ref) / t_ref, signed
   bool arrival_checked = false; // reference arrival >= min_arrival_time, not beside the slot
