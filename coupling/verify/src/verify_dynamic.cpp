@@ -15,6 +15,7 @@
 
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/reference/analytic.hpp"
+#include "ddafrac/coupling/dda_twin.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/dda/run.hpp"
@@ -55,12 +56,6 @@ const meshes::ImpactDisc& impact_geometry(const scene::Scene& s) {
   const auto* g = std::get_if<meshes::ImpactDisc>(&s.geometry);
   if (!g) throw std::runtime_error(s.source.string() + ": the dynamic comparison needs an impact_disc geometry");
   return *g;
-}
-
-const scene::Body& disc_body(const scene::Scene& s) {
-  for (const auto& b : s.bodies)
-    if (b.role == scene::Role::Disc) return b;
-  throw std::runtime_error(s.source.string() + ": the scene has no disc body");
 }
 
 double impact_speed(const scene::Scene& s) {
@@ -173,24 +168,11 @@ GaugeHistories run_impact_dda(const scene::Scene& scene, const ImpactSettings& s
   impact_geometry(scene);
   const scene::Body& disc = disc_body(scene);
   const double young = disc_material(scene).elastic.young;
-  scene::Scene twin = scene;
-  twin.analysis.gravity = {0.0, 0.0};
+  DdaTwin bonded = bonded_dda_twin(scene, settings.stiffness_ratio);
+  scene::Scene& twin = bonded.scene;
   twin.analysis.mode = scene::Mode::Dynamic;
   twin.analysis.dt_max = dda_dt_of(scene, settings);
   twin.analysis.end_time = end_time_of(scene, settings);
-  if (settings.stiffness_ratio > 0.0) {
-    const double kn = settings.stiffness_ratio * young;
-    twin.analysis.penalty = kn;
-    for (auto& js : twin.joint_sets) {
-      const double ks_over_kn = js.normal_stiffness > 0.0 ? js.shear_stiffness / js.normal_stiffness : 0.4;
-      js.normal_stiffness = kn;
-      js.shear_stiffness = ks_over_kn * kn;
-    }
-  }
-  if (!disc.virtual_joints) throw std::runtime_error(scene.source.string() + ": the disc has no virtual joints");
-  auto& bonded = twin.joint_sets.at(*disc.virtual_joints);
-  bonded.tensile_strength = std::numeric_limits<double>::infinity();  // failure ratios are then 0
-  bonded.cohesion = std::numeric_limits<double>::infinity();
 
   GaugeHistories out;
   name_gauges(out, scene);
@@ -207,7 +189,7 @@ GaugeHistories run_impact_dda(const scene::Scene& scene, const ImpactSettings& s
   out.blocks = engine.blocks().block_count();
   out.joints = engine.blocks().joints.size();
   out.dt = twin.analysis.dt_max;
-  out.kn = twin.joint_sets.at(*disc.virtual_joints).normal_stiffness;
+  out.kn = bonded.kn;
   const auto& gauge_blocks = engine.gauge_blocks();
   const auto sample = [&] {
     for (std::size_t g = 0; g < gauge_blocks.size(); ++g) {

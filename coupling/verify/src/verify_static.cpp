@@ -29,6 +29,7 @@
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/reference/analytic.hpp"
 #include "ddafrac/reference/compare.hpp"
+#include "ddafrac/coupling/dda_twin.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/fem/static_problem.hpp"
@@ -100,33 +101,19 @@ Setup make_setup(const scene::Scene& s) {
   return out;
 }
 
-/// The scene as the continuum's DDA twin: disc only, joints bonded and unbreakable, joint
-/// springs kn = ratio·E (ks = 0.4 kn), static mode.
-scene::Scene dda_twin(scene::Scene s, const VerifyOptions& o, double& kn) {
+/// The static DDA twin: the bonded twin of the disc alone, in static mode.
+scene::Scene static_twin(const scene::Scene& scene, const VerifyOptions& o, double& kn, double& ks_over_kn) {
+  DdaTwin twin = bonded_dda_twin(scene, o.stiffness_ratio);
+  kn = twin.kn;
+  ks_over_kn = twin.ks_over_kn;
+  scene::Scene& s = twin.scene;
   s.bodies.erase(std::remove_if(s.bodies.begin(), s.bodies.end(),
                                 [](const scene::Body& b) { return b.role != scene::Role::Disc; }),
                  s.bodies.end());
-  const scene::Body& disc = s.bodies.at(0);
-  const double young = s.materials.at(disc.material).young;
-  kn = o.stiffness_ratio > 0.0 ? o.stiffness_ratio * young : s.analysis.penalty;
-  for (auto& j : s.joint_sets) {
-    if (o.stiffness_ratio > 0.0) {
-      j.normal_stiffness = kn;
-      j.shear_stiffness = 0.4 * kn;
-    }
-  }
-  if (disc.virtual_joints) {
-    auto& v = s.joint_sets.at(*disc.virtual_joints);
-    v.tensile_strength = std::numeric_limits<double>::infinity();
-    v.cohesion = std::numeric_limits<double>::infinity();
-    kn = v.normal_stiffness;
-  }
-  s.analysis.penalty = kn;
   s.analysis.mode = scene::Mode::Static;
-  s.analysis.gravity = {0.0, 0.0};
   s.analysis.dt_max = 1e-2;  // static mode: the inertia term 2M/dt² is then ~1e-6 of the stiffness
   s.gauges.clear();
-  return s;
+  return std::move(twin.scene);
 }
 
 double cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
@@ -278,6 +265,7 @@ struct DdaRun {
   double applied_resultant = 0.0;   // |Σ f| of the point loads, N/m
   double applied_top = 0.0;         // vertical resultant on the upper half, N/m
   double kn = 0.0;
+  double ks_over_kn = 0.0;         // of the bonded joints
   double mean_block_size = 0.0;
   long dt_cuts = 0;
   std::string solver;
@@ -288,7 +276,7 @@ struct DdaRun {
 DdaRun run_dda(const scene::Scene& scene, const Setup& st, const VerifyOptions& o) {
   DdaRun out;
   const auto start = Clock::now();
-  scene::Scene twin = dda_twin(scene, o, out.kn);
+  scene::Scene twin = static_twin(scene, o, out.kn, out.ks_over_kn);
   const auto mesh = meshes::generate_dda_mesh(st.dda_geometry, scene.mesh);
   out.mesh_wall = seconds_since(start);
   const double young = twin.materials.at(twin.bodies.at(0).material).young;
@@ -610,10 +598,10 @@ VerificationReport verify_static(const scene::Scene& scene, const VerifyOptions&
                       2 * st.half_angle * 180 / pi, st.pressure / 1e6, st.load, st.slit ? " Central slit." : "");
   md << "### Models\n\n| | settings | run time (s) |\n|---|---|---|\n";
   md << fmt::format("| DDA | {} blocks (mean size {:.2f} mm), virtual joints bonded and unbreakable (σt = c = ∞), kn = {:.3g} N/m "
-                    "= {:.0f}·E, ks = 0.4·kn; static mode (velocities reset every step), dt = {:.0e} s (inertia ≈ 0), {} solver; "
+                    "= {:.0f}·E, ks = {:g}·kn; static mode (velocities reset every step), dt = {:.0e} s (inertia ≈ 0), {} solver; "
                     "{} consistent nodal loads (resultant {:.2e} N/m; vertical load on the upper half {:.6g} N/m); 4 anchors "
                     "(0.05·E N/m) that follow the deformation and resist only rigid-body motion | {:.2f} (mesh {:.2f}) |\n",
-                    dda.block_count, h * 1e3, dda.kn, dda.kn / mat.elastic.young, 1e-2, dda.solver, dda.loads, dda.applied_resultant,
+                    dda.block_count, h * 1e3, dda.kn, dda.kn / mat.elastic.young, dda.ks_over_kn, 1e-2, dda.solver, dda.loads, dda.applied_resultant,
                     dda.applied_top, dda.wall, dda.mesh_wall);
   md << fmt::format("| FEM | P{} triangles, element size {:.1f} mm, {} refinement(s): {} cells, {} dofs, CG+AMG {} iterations; load as a "
                     "boundary pressure{} | {:.2f} |\n",
