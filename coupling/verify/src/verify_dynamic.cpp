@@ -22,6 +22,7 @@
 #include "ddafrac/fem/dynamic_problem.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "ddafrac/scene/scene.hpp"
+#include "thread_scope.hpp"
 
 namespace ddafrac::coupling {
 
@@ -107,18 +108,6 @@ std::vector<dda::Anchor> patch_anchors(const meshes::Mesh& mesh) {
       }
   return anchors;
 }
-
-/// Restores the OpenMP thread count on leaving.
-class ThreadScope {
- public:
-  explicit ThreadScope(int threads) : saved_(omp_get_max_threads()) { omp_set_num_threads(std::max(1, threads)); }
-  ~ThreadScope() { omp_set_num_threads(saved_); }
-  ThreadScope(const ThreadScope&) = delete;
-  ThreadScope& operator=(const ThreadScope&) = delete;
-
- private:
-  int saved_;
-};
 
 void push_sample(GaugeHistories& h, std::size_t g, double t, double syy, double s1) {
   h.syy[g].t.push_back(t);
