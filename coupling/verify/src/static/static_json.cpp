@@ -1,5 +1,6 @@
 #include <nlohmann/json.hpp>
 
+#include "comparison_json.hpp"
 #include "static/static_report.hpp"
 
 namespace ddafrac::coupling {
@@ -12,18 +13,13 @@ nlohmann::json pair(const CentreError& e) { return {e.xx, e.yy}; }
 
 std::string static_json(const StaticResults& r, double young) {
   const StaticComparison& c = r.comparison;
-  nlohmann::json j{{"kind", "static"},
-                   {"blocks", r.dda.blocks.size()},
-                   {"steps", r.dda.steps},
-                   {"dda_wall", r.dda.wall},
-                   {"fem_wall", r.fem.wall},
-                   {"fem_dofs", r.fem.dofs},
-                   {"kn_over_E", r.dda.kn / young},
-                   {"load", r.setup.load},
-                   {"last_step_ratio", r.dda.last_step_ratio},
-                   {"anchor_force", r.dda.anchor_force},
-                   {"field_l2_fem", field(c.dda_fem)},
-                   {"field_l2_fem_inner", c.dda_fem_inner.all}};
+  nlohmann::json j = comparison_json({"static", r.dda.blocks.size(), r.dda.steps, r.dda.wall, r.fem.wall, r.fem.dofs,
+                                      r.dda.kn / young});
+  j["load"] = r.setup.load;
+  j["last_step_ratio"] = r.dda.last_step_ratio;
+  j["anchor_force"] = r.dda.anchor_force;
+  j["field_l2_fem"] = field(c.dda_fem);
+  j["field_l2_fem_inner"] = c.dda_fem_inner.all;
   if (c.has_centre) {
     j["centre"] = {{"dda", components(c.centre_dda)}, {"fem", components(c.centre_fem)}};
     j["centre_error_fem"] = pair(c.centre_dda_fem);

@@ -1,112 +1,19 @@
 #pragma once
-// The contact-free impact response compared (issue 6): the DDA twin of the continuum (virtual
-// joints bonded and unbreakable, no plate: the impact-patch vertices held by stiff fixed points
-// from t = 0, the disc moving at v0, no gravity) against the deal.II FEM reference of the same
-// disc (same slotted geometry, the patch held from t = 0), gauge by gauge: σyy histories, RMS
-// error over the reference peak, peak value and time, P-wave arrival time.
-//
-// The FEM reference does not depend on the DDA's penalty or time step, so the studies compute
-// it once (run_impact_fem) and compare many DDA runs (run_impact_dda) against it.
+// The contact-free impact response compared (issue 6): the DDA twin against the FEM reference
+// (impact_runs.hpp), gauge by gauge (impact_compare.hpp), checked against the scene's
+// [verification] tolerances and reported.
 
-#include <string>
-#include <vector>
-
-#include "ddafrac/reference/compare.hpp"
+#include "ddafrac/coupling/verification.hpp"
 #include "ddafrac/coupling/verify.hpp"
 
 namespace ddafrac::coupling {
 
-/// What the comparison runs. Zeros mean "the scene's value" or the documented default.
-struct ImpactSettings {
-  /// kn/E of every joint set (virtual joints and real joints alike; ks keeps the scene's ks/kn).
-  /// <= 0 keeps the scene's stiffnesses.
-  double stiffness_ratio = 100.0;
-  double dda_dt = 0.0;     // s, DDA dt_max; 0 = analysis.dt_max
-  double end_time = 0.0;   // s; 0 = analysis.end_time
-  int threads = 1;         // DDA OpenMP threads (results do not depend on it)
-  int max_steps = 0;       // cap on DDA steps (0: none)
-  /// Stiffness of each fixed point holding an impact-patch vertex, as a multiple of E
-  /// (N/m per unit thickness / Pa). Independent of kn so that the penalty study varies only
-  /// the joints.
-  double anchor_ratio = 1000.0;
-  int fem_degree = 2;
-  int fem_refine = 0;
-  double fem_element_size = 0.0;  // m; 0 = D/25 (as `ddafrac fem`)
-  double fem_dt = 0.0;            // s; 0 = min(DDA dt, 2.5e-8 s)
-  double fem_beta = 0.25, fem_gamma = 0.5;  // Newmark of the reference
-  /// Arrival of the wave at a gauge: the first time |σyy| reaches this share of the plane-wave
-  /// stress ρ c_p v0 (the same level in both models).
-  double arrival_fraction = 0.1;
-  /// Gauges whose reference arrival is earlier than this are left out of the arrival checks
-  /// (too close to the patch: the block size, not the wave speed, sets their arrival), and so
-  /// are gauges closer to the joint slot than one DDA block and gauges whose reference arrival
-  /// is earlier than 0.9 × (distance from the patch) / c_p (a numerical precursor of the FEM).
-  double min_arrival_time = 5e-6;  // s
-  bool quiet = true;  // progress lines on stdout
-};
-
-/// Stress histories at the scene's gauges (σyy and σ1, Pa) and what the run cost.
-struct GaugeHistories {
-  std::vector<std::string> names;
-  std::vector<reference::History> syy, s1;
-  std::vector<bool> near_slot;  // per gauge: closer to the joint slot than one DDA block
-  std::vector<double> earliest_arrival;  // per gauge, s: distance from the impact patch / c_p
-  double plane_wave_stress = 0.0;  // Pa, |ρ c_p v0| of the scene: the scale of the arrival level
-  double wall = 0.0;  // s, meshing excluded
-  double mesh_wall = 0.0;  // s
-  // DDA only.
-  std::size_t blocks = 0, joints = 0;
-  long steps = 0, cg_total = 0, open_close_total = 0, dt_cuts = 0;
-  int cg_max = 0;
-  double dt = 0.0;   // s, dt_max used
-  double kn = 0.0;   // N/m, joint normal stiffness used
-  // FEM only.
-  std::size_t dofs = 0;
-  std::string fem_solver;  // the linear solver
-};
-
-/// The DDA twin (see the top of this file).
-GaugeHistories run_impact_dda(const scene::Scene& scene, const ImpactSettings& settings);
-
-/// The FEM reference with (fem_beta, fem_gamma) at fem_dt.
-GaugeHistories run_impact_fem(const scene::Scene& scene, const ImpactSettings& settings);
-
-/// Per gauge, σyy of a model against the reference.
-struct GaugeError {
-  std::string gauge;
-  reference::HistoryComparison syy;      // RMS/peak, peaks, arrivals
-  double peak_error = 0.0;      // (|peak| − |peak_ref|) / |peak_ref|: negative = the model's peak is smaller
-  double arrival_error = 0.0;   // (t − t_ref) / t_ref, signed
-  bool arrival_checked = false; // reference arrival >= min_arrival_time, not beside the slot
-  double s1_rms_over_peak = 0.0;  // RMS(σ1 − σ1_ref) / max |σ1_ref|
-};
-
-std::vector<GaugeError> compare_gauges(const GaugeHistories& model, const GaugeHistories& reference,
-                                       const ImpactSettings& settings);
-
-/// One DDA run against a reference: the numbers the penalty and convergence studies tabulate.
-struct ImpactErrorSummary {
-  std::vector<GaugeError> gauges;
-  double max_rms = 0.0, mean_rms = 0.0;            // over all gauges
-  double max_abs_arrival = 0.0;                    // over the checked gauges
-  double mean_abs_peak = 0.0, max_abs_peak = 0.0;  // |peak_error| over all gauges
-};
-ImpactErrorSummary summarise(std::vector<GaugeError> gauges);
-
-/// The whole comparison of `ddafrac verify` for an impact scene: the DDA twin (kn = 
-/// options.stiffness_ratio · E), the FEM reference with (¼, ½) and, to tell time-integration
-/// from spatial error, the FEM with the DDA's (½, 1) at the DDA's dt; gauges.csv,
-/// gauge_errors.csv and overlay PNGs in options.out_dir; checks arrival_time (each gauge whose
-/// reference arrival is >= 5 µs) and gauge_rms (every gauge) of the scene's [verification].
+/// The whole comparison of `ddafrac verify` for an impact scene: the DDA twin (kn =
+/// options.stiffness_ratio · E), the FEM reference and, to tell time-integration from spatial
+/// error, the FEM with the DDA's Newmark (kDdaNewmarkBeta, kDdaNewmarkGamma) at the DDA's dt;
+/// impact_gauges.csv, impact_gauge_errors.csv and comparison.json in options.out_dir; checks
+/// arrival_time (the gauges whose arrival is checked, ImpactSettings::min_arrival_time) and
+/// gauge_rms (every gauge) of the scene's [verification].
 VerificationReport verify_dynamic(const scene::Scene& scene, const VerifyOptions& options);
-
-/// E_eff / E of a bonded triangulation whose joints have normal stiffness kn = kn_over_e · E:
-/// 1/E_eff = 1/E + α/kn with α = 1.35 measured on a glued bar (test dda_fracture). The P wave
-/// is slower by sqrt(E_eff/E).
-double effective_modulus_ratio(double kn_over_e);
-
-/// Writes gauge histories of several models side by side: t,model,gauge,syy,s1 (whole file).
-void write_gauge_histories(const std::filesystem::path& file,
-                           const std::vector<std::pair<std::string, const GaugeHistories*>>& models);
 
 }  // namespace ddafrac::coupling
