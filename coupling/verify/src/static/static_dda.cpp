@@ -40,6 +40,7 @@ DdaTwin static_twin(const scene::Scene& scene, double kn_over_young) {
                  s.bodies.end());
   s.analysis.mode = scene::Mode::Static;
   s.analysis.dt_max = kStaticTwinDt;
+  s.analysis.search_distance_factor = kStaticTwinSearchDistanceFactor;
   s.gauges.clear();
   return twin;
 }
@@ -208,7 +209,6 @@ dda::EngineOptions static_engine_options(const meshes::Mesh& mesh, const StaticS
   out.anchors = eo.anchors.size();
   eo.anchor_penalty_factor = kAnchorStiffnessOverYoung * young / out.kn;
   eo.allowed_displacement = kStaticAllowedDisplacementOverPE * st.load / young;
-  eo.search_distance_factor = kStaticTwinSearchDistanceFactor;
   return eo;
 }
 
