@@ -31,7 +31,6 @@ namespace {
 
 constexpr double default_load = 1.0e6;               // N/m, nominal diametral load
 constexpr double default_arc_half_angle_deg = 10.0;  // Hondros arcs when the geometry has none
-constexpr double elements_per_diameter = 25.0;       // default FEM element size D/25
 constexpr int profile_points = 201;
 
 struct FemArguments {
@@ -164,7 +163,7 @@ void run_fem(const FemArguments& args) {
   const auto out = output_directory(args.out, s, "fem");
   if (is_root()) std::filesystem::create_directories(out);
   const auto start = std::chrono::steady_clock::now();
-  const double size = args.element_size > 0.0 ? args.element_size : coupling::disc_diameter(s.geometry) / elements_per_diameter;
+  const double size = args.element_size > 0.0 ? args.element_size : coupling::disc_diameter(s.geometry) / coupling::kFemElementsPerDiameter;
   meshes::Geometry geometry = s.geometry;
   if (auto* flat = std::get_if<meshes::FlattenedDisc>(&geometry)) flat->with_platens = false;
   nlohmann::json summary;

@@ -139,7 +139,7 @@ void register_verify_command(CLI::App& app) {
   command->add_option("--threads", args->threads, "OpenMP threads of the DDA")->check(whole_number(1, kMaxThreads))->capture_default_str();
   command->add_option("--degree", args->degree, "FEM polynomial degree (1 or 2)")->check(CLI::Range(1, 2))->capture_default_str();
   command->add_option("--refine", args->refine, "uniform refinements of the FEM mesh (element size D/25)")->check(CLI::Range(0, 5))->capture_default_str();
-  command->add_option("--stiffness-ratio", args->stiffness_ratio, "DDA joint stiffness kn as a multiple of E (ks = 0.4 kn); <= 0 keeps the scene's")->capture_default_str();
+  command->add_option("--stiffness-ratio", args->stiffness_ratio, "DDA joint stiffness kn as a multiple of E (each joint set keeps its ks/kn); <= 0 keeps the scene's")->capture_default_str();
   command->add_flag("--no-figures", args->no_figures, "do not draw the PNG plots");
   command->callback([args] { run_verify(*args); });
 }

@@ -21,7 +21,7 @@ void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem
       set = static_cast<Index>(scene.real_joints);
     c.joint_set = set;
     const scene::JointSet& js = scene.joint_sets[static_cast<std::size_t>(set)];
-    c.kn = js.normal_stiffness > 0.0 ? js.normal_stiffness : scene.analysis.penalty;
+    c.kn = js.normal_stiffness;
     c.ks = js.shear_stiffness;
     c.tan_phi = tan_phi[static_cast<std::size_t>(set)];
     c.cohesion = js.cohesion;

@@ -51,8 +51,8 @@ Engine::Engine(scene::Scene scene, const meshes::Mesh& mesh, EngineOptions optio
   if (scene_.real_joints >= scene_.joint_sets.size())
     throw std::invalid_argument("the scene names no joint set for real joints (contacts.real_joints)");
   for (const auto& js : scene_.joint_sets)
-    if (!(js.shear_stiffness > 0.0))
-      throw std::invalid_argument(fmt::format("joint set '{}' has no positive shear stiffness", js.name));
+    if (!(js.normal_stiffness > 0.0 && js.shear_stiffness > 0.0))
+      throw std::invalid_argument(fmt::format("joint set '{}' has no positive normal and shear stiffness", js.name));
   blocks_ = build_block_system(scene_, mesh, options_.bond_virtual_joints, options_.point_loads, options_.anchors);
   for (const auto& gauge : scene_.gauges) {
     const Index b = find_block(blocks_, gauge.position[0], gauge.position[1]);
@@ -69,12 +69,10 @@ Engine::Engine(scene::Scene scene, const meshes::Mesh& mesh, EngineOptions optio
   allowed_ = options_.allowed_displacement > 0.0 ? options_.allowed_displacement
                                                  : an.max_displacement_ratio * blocks_.model_half_height;
   if (!(allowed_ > 0.0)) throw std::invalid_argument("allowed step displacement must be positive (max_displacement_ratio)");
-  options_.detection.search_distance = options_.search_distance_factor * allowed_;
-  options_.detection.skin = options_.pair_list_skin_factor * options_.detection.search_distance;
-  double pen = an.penalty;
-  if (!(pen > 0.0))
-    for (const auto& m : blocks_.materials) pen = std::max(pen, m.young);
-  anchor_penalty_ = options_.anchor_penalty_factor * pen;
+  options_.detection.search_distance = an.search_distance_factor * allowed_;
+  options_.detection.skin = an.pair_list_skin_factor * options_.detection.search_distance;
+  if (!(an.penalty > 0.0)) throw std::invalid_argument("analysis.penalty must be positive");
+  anchor_penalty_ = options_.anchor_penalty_factor * an.penalty;
   const std::size_t n = blocks_.block_count();
   d_.assign(n, Vec6::Zero());
   active_.dynamic = an.mode == scene::Mode::Dynamic;

@@ -72,9 +72,9 @@ scene::Scene make_impact_scene(double v0, double end_time) {
   s.materials.push_back({"rock", 2050.0, 10.53e9, 0.12});
   const double deg = kPi / 180.0;
   const double kn = 0.35e9;
-  // ks = 0.4 kn, the scene files' default (scene parser).
-  s.joint_sets.push_back({"virtual", 38.5 * deg, 8.29e6, 7.86e6, kn, 0.4 * kn});
-  s.joint_sets.push_back({"real", 20.0 * deg, 1e6, 1e-5 * 1e6, kn, 0.4 * kn});
+  const double ks = scene::kDefaultShearToNormalStiffness * kn;  // as a scene file that gives none
+  s.joint_sets.push_back({"virtual", 38.5 * deg, 8.29e6, 7.86e6, kn, ks});
+  s.joint_sets.push_back({"real", 20.0 * deg, 1e6, 1e-5 * 1e6, kn, ks});
   s.real_joints = 1;
   scene::Body disc;
   disc.name = "disc";

@@ -84,7 +84,7 @@ class StressPostprocessor : public dealii::DataPostprocessor<dim> {
       dealii::Tensor<2, dim> g;
       for (unsigned int c = 0; c < dim; ++c) g[c] = in.solution_gradients[q][c];
       const Stress2 s = stress_of(lame_, g);
-      const auto p = coupling::principal(s);
+      const auto p = reference::principal(s);
       out[q][0] = s.xx;
       out[q][1] = s.yy;
       out[q][2] = s.xy;

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "ddafrac/scene/defaults.hpp"
 #include "document.hpp"
 #include "toml_reader.hpp"
 #include "ddafrac/common/angles.hpp"
@@ -31,9 +32,6 @@ using detail::TableReader;
 
 constexpr double kDegree = common::kRadiansPerDegree;
 
-/// Shear stiffness of a joint set when the file gives none, as a share of its normal stiffness
-/// (ks = kn / 2.5, the usual choice in Shi's DDA codes).
-constexpr double kDefaultShearToNormalStiffness = 0.4;
 /// Default rim arc (half-angle) over which the FEM holds the impact patch, degrees.
 constexpr double kDefaultPatchHalfAngleDeg = 5.0;
 /// Most output intervals a run may have: each writes a VTU snapshot, and more than this fills
@@ -90,6 +88,11 @@ Analysis parse_analysis(TableReader t) {
   if (auto n = t.integer("open_close_max", 1, 50, Need::Optional)) a.open_close_max = static_cast<int>(*n);
   if (auto solver = t.choice("solver", {"pcg", "direct"}, Need::Optional))
     a.solver = *solver == "direct" ? Solver::Direct : Solver::Pcg;
+  if (auto f = t.number("search_distance_factor", NumberRule::positive("contact search distance / allowed step displacement"),
+                        Need::Optional))
+    a.search_distance_factor = *f;
+  if (auto f = t.number("pair_list_skin_factor", NumberRule::non_negative("pair-list skin / search distance"), Need::Optional))
+    a.pair_list_skin_factor = *f;
   if (a.end_time > 0 && a.output_interval > a.end_time)
     t.problem("output_interval", fmt::format("must not exceed analysis.end_time ({:g} s)", a.end_time));
   check_interval_count(t, "output_interval", a.output_interval, a.end_time, kMaxOutputIntervals);

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "ddafrac/coupling/compare.hpp"
+#include "ddafrac/reference/compare.hpp"
 
-using namespace ddafrac::coupling;
+using namespace ddafrac::reference;
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;

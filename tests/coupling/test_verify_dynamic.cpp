@@ -10,6 +10,7 @@
 #include <string>
 
 #include "../fem/fixture.hpp"
+#include "ddafrac/coupling/impact_runs.hpp"
 #include "ddafrac/coupling/verify_dynamic.hpp"
 #include "ddafrac/scene/parse.hpp"
 #include "ddafrac/scene/scene.hpp"

@@ -165,12 +165,12 @@ scene::Scene cracking_impact_scene() {
 BOOST_AUTO_TEST_CASE(the_pair_list_changes_no_contact) {
   const meshes::Mesh m = make_ring_disc_mesh(0.1, 600);
   const scene::Scene s = cracking_impact_scene();
-  auto with_skin = [](double factor) {
-    EngineOptions o;
-    o.pair_list_skin_factor = factor;
-    return o;
+  auto with_skin = [&s](double factor) {
+    scene::Scene t = s;
+    t.analysis.pair_list_skin_factor = factor;
+    return t;
   };
-  Engine reference(s, m, with_skin(1.0)), none(s, m, with_skin(0.0)), wide(s, m, with_skin(4.0));
+  Engine reference(with_skin(1.0), m), none(with_skin(0.0), m), wide(with_skin(4.0), m);
   constexpr int kSteps = 200;
   int mismatches = 0;
   for (int k = 0; k < kSteps; ++k) {

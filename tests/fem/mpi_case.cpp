@@ -26,7 +26,7 @@ constexpr double half_angle = 10.0 * test::test_pi / 180.0;  // Hondros 2 alpha 
 constexpr double load = 1.0e6;                                // N/m
 constexpr int coarse_rings = 6;
 constexpr int profile_points = 11;
-const coupling::Elastic rock{10.53e9, 0.12, 2050.0};
+const reference::Elastic rock{10.53e9, 0.12, 2050.0};
 
 void write_static(bool quads, std::ofstream& out) {
   fem::StaticProblem p;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "ddafrac/coupling/analytic.hpp"
+#include "ddafrac/reference/analytic.hpp"
 #include "ddafrac/fem/dynamic_problem.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "fixture.hpp"
@@ -23,7 +23,7 @@ constexpr double element_size = 0.0015;     // m
 constexpr double dt = 0.05e-6;              // s, c_p dt = 0.11 mm, well below h
 constexpr double end_time = 15e-6;          // s, before the joint/centre reflections return
 constexpr double v0 = 3.5;                  // m/s
-const coupling::Elastic rock{10.53e9, 0.12, 2050.0};
+const reference::Elastic rock{10.53e9, 0.12, 2050.0};
 // Gauges on the vertical diameter, d above the lowest point (0, -R).
 const std::vector<double> heights{0.003, 0.010, 0.020, 0.030};
 
@@ -62,8 +62,8 @@ BOOST_AUTO_TEST_CASE(trapezoidal_newmark_waves_and_energy) {
   BOOST_TEST_MESSAGE("dofs " << r.stats.dofs << ", steps " << r.steps << ", " << r.stats.solver
                      << ", setup " << r.stats.setup_seconds << " s, run " << r.stats.solve_seconds
                      << " s");
-  const double c_p = coupling::p_wave_speed(rock, coupling::PlaneModel::Stress);
-  const double plane = coupling::impact_plane_wave_stress(rock, coupling::PlaneModel::Stress, v0);
+  const double c_p = reference::p_wave_speed(rock, reference::PlaneModel::Stress);
+  const double plane = reference::impact_plane_wave_stress(rock, reference::PlaneModel::Stress, v0);
 
   // Arrival: first time syy passes half the plane-wave stress (the middle of the smeared front).
   for (std::size_t g = 0; g < heights.size(); ++g) {
@@ -124,7 +124,7 @@ BOOST_AUTO_TEST_CASE(pressure_pulse_plane_wave) {
   p.end_time = pulse_end_time;
   p.gauges.resize(2);  // 3 and 10 mm deep
   const auto r = fem::run_dynamic(p);
-  const double c_p = coupling::p_wave_speed(rock, coupling::PlaneModel::Stress);
+  const double c_p = reference::p_wave_speed(rock, reference::PlaneModel::Stress);
   const double radius = 0.5 * diameter;
   for (std::size_t g = 0; g < p.gauges.size(); ++g) {
     // Peak, and the centroid time of the compressive pulse (d / c_p + T / 2 if undistorted).

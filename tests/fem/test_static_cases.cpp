@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "ddafrac/coupling/analytic.hpp"
+#include "ddafrac/reference/analytic.hpp"
 #include "ddafrac/fem/static_problem.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "fixture.hpp"
@@ -21,7 +21,7 @@ constexpr double diameter = 0.1;              // m
 constexpr double flat_angle = 20.0 * pi / 180.0;  // central angle of each flat
 constexpr double element_size = 0.006;        // m, coarse gmsh mesh; refined by deal.II
 constexpr double pressure = 50.0e6;           // Pa on the top flat
-const coupling::Elastic rock{10.53e9, 0.12, 2050.0};
+const reference::Elastic rock{10.53e9, 0.12, 2050.0};
 
 fem::StaticProblem flattened(fem::StaticLoad load, int refinements) {
   meshes::FlattenedDisc g;
@@ -52,7 +52,7 @@ BOOST_AUTO_TEST_CASE(flattened_disc_pressure_balances_reaction) {
   BOOST_TEST(std::abs(reaction[0]) < 1e-6 * load);
 
   const auto centre = solution.stress_at(0.0, 0.0).stress;
-  const auto arc = coupling::flattened_disc_centre_arc_mapped({diameter, 1.0}, load, flat_angle);
+  const auto arc = reference::flattened_disc_centre_arc_mapped({diameter, 1.0}, load, flat_angle);
   const double dxx = centre.xx / arc.xx - 1.0, dyy = centre.yy / arc.yy - 1.0;
   BOOST_TEST_MESSAGE("flattened disc: dofs " << solution.stats().dofs << ", centre sxx "
                      << centre.xx << " (arc-mapped " << arc.xx << ", " << 100 * dxx

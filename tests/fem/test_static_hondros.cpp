@@ -6,7 +6,7 @@
 #include <iostream>
 #include <vector>
 
-#include "ddafrac/coupling/analytic.hpp"
+#include "ddafrac/reference/analytic.hpp"
 #include "ddafrac/fem/static_problem.hpp"
 #include "disc_mesh.hpp"
 #include "fixture.hpp"
@@ -24,8 +24,8 @@ constexpr double load = 1.0e6;                         // N/m, nominal Hondros l
 constexpr int coarse_rings = 6;                        // rim node every 10 deg: arc ends are nodes
 constexpr int profile_points = 201;
 
-const coupling::Disc disc{diameter, 1.0};
-const coupling::HondrosLoad hondros{load, half_angle};
+const reference::Disc disc{diameter, 1.0};
+const reference::HondrosLoad hondros{load, half_angle};
 
 fem::StaticProblem problem(bool quads, int degree, int refinements) {
   fem::StaticProblem p;
@@ -49,7 +49,7 @@ template <typename Exact>
 double profile_error(const std::vector<fem::StressSample>& fe, Exact exact, bool vertical) {
   double num = 0.0, den = 0.0;
   for (const auto& s : fe) {
-    const coupling::Stress2 e = exact(vertical ? s.y : s.x);
+    const reference::Stress2 e = exact(vertical ? s.y : s.x);
     num += std::pow(s.stress.xx - e.xx, 2) + std::pow(s.stress.yy - e.yy, 2) + std::pow(s.stress.xy, 2);
     den += e.xx * e.xx + e.yy * e.yy;
   }
@@ -61,7 +61,7 @@ Errors run(bool quads, int degree, int refinements) {
   const auto solution = fem::solve_static(problem(quads, degree, refinements));
   const double r = disc.radius();
   const auto c = solution.stress_at(0.0, 0.0);
-  const auto exact_c = coupling::hondros_centre(disc, hondros);
+  const auto exact_c = reference::hondros_centre(disc, hondros);
   // The loaded diameter excluding the loaded arcs (|y| > R cos alpha).
   const double y_max = r * std::cos(half_angle);
   const auto vertical = solution.profile(0.0, -y_max, 0.0, y_max, profile_points);
@@ -69,8 +69,8 @@ Errors run(bool quads, int degree, int refinements) {
   Errors e;
   e.centre_xx = std::abs(c.stress.xx / exact_c.xx - 1.0);
   e.centre_yy = std::abs(c.stress.yy / exact_c.yy - 1.0);
-  e.loaded = profile_error(vertical, [](double y) { return coupling::hondros_loaded_diameter(disc, hondros, y); }, true);
-  e.horizontal = profile_error(horizontal, [](double x) { return coupling::hondros_horizontal_diameter(disc, hondros, x); }, false);
+  e.loaded = profile_error(vertical, [](double y) { return reference::hondros_loaded_diameter(disc, hondros, y); }, true);
+  e.horizontal = profile_error(horizontal, [](double x) { return reference::hondros_horizontal_diameter(disc, hondros, x); }, false);
   e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   e.dofs = solution.stats().dofs;
   BOOST_TEST_MESSAGE((quads ? "quad" : "tri ") << " p=" << degree << " k=" << refinements

@@ -115,6 +115,10 @@ BOOST_AUTO_TEST_CASE(valid_scene_gives_stated_values_in_si_units) {
   // Stiffnesses default to the analysis penalty and ks = 0.4 kn when the joint set gives none.
   BOOST_TEST(s.joint_sets[0].normal_stiffness == 0.35e9);
   BOOST_TEST(s.joint_sets[0].shear_stiffness == 0.4 * 0.35e9);
+  // The contact search: search distance 2.5 × the allowed step displacement, pair-list skin 1 ×
+  // the search distance.
+  BOOST_TEST(s.analysis.search_distance_factor == 2.5);
+  BOOST_TEST(s.analysis.pair_list_skin_factor == 1.0);
   BOOST_TEST(s.real_joints == 1u);
   const auto& g = std::get<meshes::ImpactDisc>(s.geometry);
   BOOST_TEST(std::abs(g.joint_angle - kPi / 4) < 1e-15);
@@ -166,6 +170,19 @@ BOOST_AUTO_TEST_CASE(negative_density_is_refused) {
 
 BOOST_AUTO_TEST_CASE(zero_time_step_is_refused) {
   expect_problem(replaced(kValid, "dt_max = 1e-7", "dt_max = 0"), "analysis.dt_max", 5, "> 0 (s), got 0");
+}
+
+BOOST_AUTO_TEST_CASE(contact_search_factors_are_read_when_given) {
+  const scene::Scene s = scene::parse_scene(
+      replaced(kValid, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nsearch_distance_factor = 0.25\npair_list_skin_factor = 0"),
+      "ok.toml");
+  BOOST_TEST(s.analysis.search_distance_factor == 0.25);
+  BOOST_TEST(s.analysis.pair_list_skin_factor == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(zero_search_distance_is_refused) {
+  expect_problem(replaced(kValid, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nsearch_distance_factor = 0"),
+                 "analysis.search_distance_factor", 11, "> 0");
 }
 
 BOOST_AUTO_TEST_CASE(connectivity_outside_open_unit_interval) {

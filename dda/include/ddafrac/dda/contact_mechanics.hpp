@@ -11,9 +11,8 @@
 namespace ddafrac::dda {
 
 /// Stiffness and friction of every contact from its joint set (bonded joints: their virtual
-/// joint set; others, broken joints included: the scene's real joints). kn falls back to the
-/// scene penalty when the joint set gives none; ks is the joint set's (the scene parser fills
-/// in its default).
+/// joint set; others, broken joints included: the scene's real joints). kn and ks are the joint
+/// set's (the scene parser fills in their defaults, scene/defaults.hpp).
 void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem& blocks,
                                const scene::Scene& scene);
 

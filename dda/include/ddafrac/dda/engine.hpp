@@ -21,8 +21,6 @@ struct EngineOptions {
   SolverSettings solver;
   bool bond_virtual_joints = true;        // same-body shared edges start as bonded joints
   double anchor_penalty_factor = 100.0;   // fixed/prescribed point springs = factor·penalty (N/m)
-  double search_distance_factor = 2.5;    // contact search distance / allowed step displacement
-  double pair_list_skin_factor = 1.0;     // skin of the contact pair list / search distance
   double allowed_displacement = 0.0;      // m; 0 = max_displacement_ratio · half model height
   double dt_cut_factor = 0.3;             // dt ×= this on a failed step
   double dt_grow_factor = 1.2;            // dt ×= this after an easy step, up to dt_max
@@ -30,7 +28,7 @@ struct EngineOptions {
   double dt_floor_fraction = 1e-6;        // dt below dt_max·this = numerical trouble
   double mass_damping = 0.0;              // η of C = ηM, 1/s (off by default)
   double state_tolerance = 1e-4;          // open-close hysteresis / allowed step displacement
-  DetectionParams detection;              // search_distance is filled in by the engine
+  DetectionParams detection;              // search_distance and skin: from the scene's analysis
   std::vector<PointLoad> point_loads;     // extra loads (tests, benchmarks)
   std::vector<Anchor> anchors;            // extra fixed/prescribed points
 };

@@ -6,15 +6,15 @@
 #include <stdexcept>
 #include <string>
 
-#include "ddafrac/coupling/analytic.hpp"
+#include "ddafrac/reference/analytic.hpp"
 
 namespace ddafrac::fem {
 
-using coupling::PlaneModel;
-using coupling::Stress2;
+using reference::PlaneModel;
+using reference::Stress2;
 
 struct Material {
-  coupling::Elastic elastic;  // E (Pa), nu, rho (kg/m^3)
+  reference::Elastic elastic;  // E (Pa), nu, rho (kg/m^3)
   PlaneModel plane = PlaneModel::Stress;
 };
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ddafrac/meshes/geometry.hpp"
+#include "ddafrac/scene/defaults.hpp"
 
 namespace ddafrac::scene {
 
@@ -53,12 +54,14 @@ struct Analysis {
   PlaneModel plane = PlaneModel::Stress;
   double dt_max = 0.0;                  // s
   double max_displacement_ratio = 0.0;  // allowed step displacement / half model height
-  double penalty = 0.0;                 // default contact stiffness kn, N/m
+  double penalty = 0.0;                 // contact stiffness kn, N/m (and joint sets' default kn)
   double end_time = 0.0;                // s
   double output_interval = 0.0;         // s between snapshots / gauge samples
   Vec2 gravity{0.0, 0.0};               // m/s^2
   int open_close_max = 6;               // open-close iterations before dt is cut
   Solver solver = Solver::Pcg;
+  double search_distance_factor = kDefaultSearchDistanceFactor;  // contact search distance / allowed step displacement
+  double pair_list_skin_factor = kDefaultPairListSkinFactor;     // skin of the contact pair list / search distance
 };
 
 struct Gauge {

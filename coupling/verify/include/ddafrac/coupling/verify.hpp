@@ -24,8 +24,9 @@ struct VerifyOptions {
   int threads = 1;                // OpenMP threads of the DDA (results do not depend on it)
   int fem_degree = 2;             // polynomial degree of the FEM reference
   int fem_refine = 0;             // uniform refinements of the FEM mesh
-  /// DDA contact stiffness of the bonded (virtual) joints as a multiple of Young's modulus;
-  /// <= 0 keeps the scene's values. The DDA's effective modulus is E / (1 + 1.35 E / kn).
+  /// DDA contact stiffness kn of every joint set as a multiple of Young's modulus, each set
+  /// keeping its ks/kn; <= 0 keeps the scene's values. The joints' compliance lowers the twin's
+  /// effective modulus (effective_modulus_ratio, verify_dynamic.hpp).
   double stiffness_ratio = 100.0;
   int max_steps = 0;              // cap on DDA steps (0: the comparison's own default)
   bool figures = true;            // draw PNGs (matplotlib) into out_dir

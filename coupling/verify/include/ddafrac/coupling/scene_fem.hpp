@@ -15,6 +15,9 @@ double disc_diameter(const meshes::Geometry& geometry);
 /// std::invalid_argument if the scene has no disc body.
 fem::Material disc_material(const scene::Scene& scene);
 
+/// Default FEM element size: the disc's diameter over this (`ddafrac fem`, `ddafrac verify`).
+inline constexpr double kFemElementsPerDiameter = 25.0;
+
 /// Default half-angle (rad) of the Hondros arcs of a disc whose geometry has none.
 inline constexpr double default_arc_half_angle = 10.0 * 3.14159265358979323846 / 180.0;
 

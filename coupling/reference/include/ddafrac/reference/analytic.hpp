@@ -1,12 +1,14 @@
 #pragma once
-// Analytic reference solutions of the Brazilian disc test and of elastic waves, used by the
-// FEM reference (fem/) and by the DDA verification alike. No deal.II, no Eigen: plain doubles.
+// Analytic reference solutions of the Brazilian disc test and of elastic waves. Part of the
+// leaf library ddafrac::reference (closed forms and error measures), which depends on nothing:
+// the FEM (fem/), the DDA and the comparisons of coupling/ may all use it. No deal.II, no
+// Eigen: plain doubles.
 //
 // Conventions: SI units, tension positive, 2D (per unit thickness unless `thickness` is given).
 // The disc has its centre at the origin and is loaded along the y axis (top point (0, R),
 // bottom point (0, -R)); loads are compressive and given as positive magnitudes.
 
-namespace ddafrac::coupling {
+namespace ddafrac::reference {
 
 /// In-plane stress tensor (Pa).
 struct Stress2 {
@@ -87,4 +89,4 @@ double s_wave_speed(const Elastic& material);
 /// rigid wall: -rho c_p v0 (Pa, compressive).
 double impact_plane_wave_stress(const Elastic& material, PlaneModel plane, double v0);
 
-}  // namespace ddafrac::coupling
+}  // namespace ddafrac::reference

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "ddafrac/coupling/analytic.hpp"
+#include "ddafrac/reference/analytic.hpp"
 
-using namespace ddafrac::coupling;
+using namespace ddafrac::reference;
 
 namespace {
 constexpr double pi = 3.14159265358979323846;

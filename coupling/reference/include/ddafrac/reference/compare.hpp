@@ -1,11 +1,12 @@
 #pragma once
 // Error measures of one model against a reference: fields sampled at the same points, and
-// stress histories at gauges. Plain arrays in, numbers out; no model types.
+// stress histories at gauges. Plain arrays in, numbers out; no model types. Part of the leaf
+// library ddafrac::reference (with the closed forms of analytic.hpp).
 
 #include <cstddef>
 #include <vector>
 
-namespace ddafrac::coupling {
+namespace ddafrac::reference {
 
 /// sqrt(Σ(a−r)² / Σr²) over paired samples; throws std::invalid_argument on a size mismatch
 /// or an all-zero reference.
@@ -40,4 +41,4 @@ struct HistoryComparison {
 /// the share of each history's own peak that marks its arrival.
 HistoryComparison compare_histories(const History& approximation, const History& reference, double arrival_fraction);
 
-}  // namespace ddafrac::coupling
+}  // namespace ddafrac::reference

@@ -1,10 +1,10 @@
-#include "ddafrac/coupling/analytic.hpp"
+#include "ddafrac/reference/analytic.hpp"
 
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
-namespace ddafrac::coupling {
+namespace ddafrac::reference {
 namespace {
 
 constexpr double pi = 3.14159265358979323846;
@@ -168,4 +168,4 @@ double impact_plane_wave_stress(const Elastic& m, PlaneModel plane, double v0) {
   return -m.density * p_wave_speed(m, plane) * v0;
 }
 
-}  // namespace ddafrac::coupling
+}  // namespace ddafrac::reference

@@ -1,10 +1,10 @@
-#include "ddafrac/coupling/compare.hpp"
+#include "ddafrac/reference/compare.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-namespace ddafrac::coupling {
+namespace ddafrac::reference {
 
 namespace {
 void require_history(const History& h) {
@@ -77,4 +77,4 @@ HistoryComparison compare_histories(const History& approximation, const History&
   return out;
 }
 
-}  // namespace ddafrac::coupling
+}  // namespace ddafrac::reference
