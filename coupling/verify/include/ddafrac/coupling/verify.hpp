@@ -26,7 +26,7 @@ struct VerifyOptions {
   int fem_refine = 0;             // uniform refinements of the FEM mesh
   /// DDA contact stiffness kn of every joint set as a multiple of Young's modulus, each set
   /// keeping its ks/kn; <= 0 keeps the scene's values. The joints' compliance lowers the twin's
-  /// effective modulus (effective_modulus_ratio, verify_dynamic.hpp).
+  /// effective modulus (effective_modulus_ratio, impact_runs.hpp).
   double stiffness_ratio = 100.0;
   int max_steps = 0;              // cap on DDA steps (0: the comparison's own default)
   bool figures = true;            // draw PNGs (matplotlib) into out_dir
