@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <vector>
+#include "ddafrac/common/stopwatch.hpp"
 
 namespace ddafrac::app {
 
@@ -15,9 +16,7 @@ constexpr std::int64_t kChainLength = 4'000'000;   // multiply-adds per chain
 constexpr std::size_t kTriadLength = 16'000'000;   // doubles per array: 3 × 128 MB, beyond any cache
 constexpr int kTriadRepeats = 8;
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+using common::seconds_since;
 
 /// Dependent multiply-add chains: no memory traffic, one chain per loop iteration.
 double compute_kernel_seconds(int threads, double& sink) {

@@ -12,6 +12,7 @@
 
 #include "direct_solver.hpp"
 #include "model.hpp"
+#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::fem {
 
@@ -19,7 +20,7 @@ namespace {
 
 // Output times are matched to steps to within this fraction of a step.
 constexpr double step_rounding = 1e-9;
-constexpr double pi = 3.14159265358979323846;
+constexpr double pi = common::kPi;
 
 /// Adds the wall time of its scope to a phase total (s).
 class PhaseTimer {

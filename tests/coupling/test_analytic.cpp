@@ -4,11 +4,12 @@
 #include <cmath>
 
 #include "ddafrac/reference/analytic.hpp"
+#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac::reference;
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
+constexpr double pi = ddafrac::common::kPi;
 const Disc disc{0.1, 1.0};
 constexpr double load = 1.0e6;  // N/m
 

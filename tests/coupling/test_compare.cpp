@@ -5,11 +5,12 @@
 #include <cmath>
 
 #include "ddafrac/reference/compare.hpp"
+#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac::reference;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = ddafrac::common::kPi;
 
 /// A half-sine pulse of amplitude a and width w starting at t0, sampled every dt up to t_end.
 History pulse(double a, double t0, double w, double dt, double t_end) {

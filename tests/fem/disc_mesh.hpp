@@ -12,10 +12,11 @@
 #include <vector>
 
 #include "ddafrac/meshes/mesh.hpp"
+#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::test {
 
-constexpr double test_pi = 3.14159265358979323846;
+constexpr double test_pi = ddafrac::common::kPi;
 
 inline meshes::Mesh ring_disc(double radius, int rings, double load_half_angle) {
   meshes::Mesh m;

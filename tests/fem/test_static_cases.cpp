@@ -8,6 +8,7 @@
 #include "ddafrac/fem/static_problem.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "fixture.hpp"
+#include "ddafrac/common/angles.hpp"
 
 using ddafrac::test::FemEnvironment;
 BOOST_TEST_GLOBAL_FIXTURE(FemEnvironment);
@@ -16,7 +17,7 @@ using namespace ddafrac;
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
+constexpr double pi = ddafrac::common::kPi;
 constexpr double diameter = 0.1;              // m
 constexpr double flat_angle = 20.0 * pi / 180.0;  // central angle of each flat
 constexpr double element_size = 0.006;        // m, coarse gmsh mesh; refined by deal.II

@@ -3,11 +3,12 @@
 #include <cmath>
 #include <stdexcept>
 #include <vector>
+#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::reference {
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
+constexpr double pi = common::kPi;
 // Series terms are summed until they fall below this fraction of the leading (n = 1) term.
 constexpr double series_relative_cutoff = 1e-16;
 // Points closer to the rim than this (relative to R) are evaluated just inside it.

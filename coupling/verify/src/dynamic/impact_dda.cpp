@@ -16,13 +16,14 @@
 #include "ddafrac/meshes/generate.hpp"
 #include "dynamic/impact_scene.hpp"
 #include "thread_scope.hpp"
+#include "ddafrac/common/stopwatch.hpp"
 
 namespace ddafrac::coupling {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+using common::seconds_since;
 
 /// A progress line every this many steps (ImpactSettings::quiet off).
 constexpr long kProgressEverySteps = 200;

@@ -9,12 +9,13 @@
 #include "ddafrac/fem/dynamic_problem.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "dynamic/impact_scene.hpp"
+#include "ddafrac/common/stopwatch.hpp"
 
 namespace ddafrac::coupling {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+using common::seconds_since;
 
 /// s between FEM gauge samples (a point search each).
 constexpr double kFemSampleInterval = 1e-7;

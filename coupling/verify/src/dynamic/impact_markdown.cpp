@@ -3,12 +3,14 @@
 #include <cmath>
 #include <sstream>
 
-#include "angles.hpp"
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
 #include "dynamic/impact_report.hpp"
 #include "dynamic/impact_scene.hpp"
 
 namespace ddafrac::coupling {
+
+using common::kPi;
 
 namespace {
 

@@ -6,12 +6,14 @@
 #include <stdexcept>
 #include <variant>
 
-#include "angles.hpp"
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/coupling/dda_twin.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
 #include "ddafrac/reference/analytic.hpp"
 
 namespace ddafrac::coupling {
+
+using common::kPi;
 
 namespace {
 /// The impact patch is sampled at this many points on each side of its centre for a gauge's

@@ -5,10 +5,12 @@
 #include <limits>
 #include <tuple>
 
-#include "angles.hpp"
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/reference/compare.hpp"
 
 namespace ddafrac::coupling {
+
+using common::kPi;
 
 namespace {
 

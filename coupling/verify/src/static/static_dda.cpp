@@ -19,17 +19,20 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "angles.hpp"
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/coupling/dda_twin.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "thread_scope.hpp"
+#include "ddafrac/common/stopwatch.hpp"
 
 namespace ddafrac::coupling {
+
+using common::kPi;
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+using common::seconds_since;
 
 /// The bonded twin of the disc alone, in static mode.
 DdaTwin static_twin(const scene::Scene& scene, double kn_over_young) {

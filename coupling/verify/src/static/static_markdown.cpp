@@ -4,10 +4,12 @@
 #include <cmath>
 #include <sstream>
 
-#include "angles.hpp"
+#include "ddafrac/common/angles.hpp"
 #include "static/static_report.hpp"
 
 namespace ddafrac::coupling {
+
+using common::kPi;
 
 namespace {
 

@@ -5,6 +5,7 @@
 #include "ddafrac/fem/elasticity.hpp"
 #include "ddafrac/meshes/geometry.hpp"
 #include "ddafrac/scene/scene.hpp"
+#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::coupling {
 
@@ -19,6 +20,6 @@ fem::Material disc_material(const scene::Scene& scene);
 inline constexpr double kFemElementsPerDiameter = 25.0;
 
 /// Default half-angle (rad) of the Hondros arcs of a disc whose geometry has none.
-inline constexpr double default_arc_half_angle = 10.0 * 3.14159265358979323846 / 180.0;
+inline constexpr double default_arc_half_angle = 10.0 * common::kPi / 180.0;
 
 }  // namespace ddafrac::coupling
