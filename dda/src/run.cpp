@@ -14,6 +14,7 @@
 
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/dda/checkpoint.hpp"
+#include "ddafrac/reference/analytic.hpp"
 #include "run_documents.hpp"
 
 namespace ddafrac::dda {
@@ -160,10 +161,9 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
     log.gauges_time = engine.time();
     for (std::size_t g = 0; g < sc.gauges.size(); ++g) {
       const Vec3& s = engine.blocks().stress[static_cast<std::size_t>(engine.gauge_blocks()[g])];
-      double s1, s3;
-      principal_stresses(s, s1, s3);
+      const reference::Principal p = reference::principal({s[0], s[1], s[2]});
       log.gauges += fmt::format("{:.17g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", engine.time(), sc.gauges[g].name,
-                                s[0], s[1], s[2], s1, s3);
+                                s[0], s[1], s[2], p.s1, p.s3);
     }
   };
   // Loading of fixed and prescribed bodies, every step.

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ddafrac/reference/analytic.hpp"
+
 namespace ddafrac::dda {
 
 namespace {
@@ -143,14 +145,6 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
   return j;
 }
 
-
-void principal_stresses(const Vec3& s, double& sigma1, double& sigma3) {
-  const double c = 0.5 * (s[0] + s[1]);
-  const double r = std::hypot(0.5 * (s[0] - s[1]), s[2]);
-  sigma1 = c + r;
-  sigma3 = c - r;
-}
-
 std::string vtu_document(const Engine& e) {
   const BlockSystem& b = e.blocks();
   const std::size_t nb = b.block_count();
@@ -186,10 +180,9 @@ std::string vtu_document(const Engine& e) {
   std::string s1 = "</DataArray>\n<DataArray type=\"Float64\" Name=\"sigma1\" format=\"ascii\">\n";
   std::string s3 = "</DataArray>\n<DataArray type=\"Float64\" Name=\"sigma3\" format=\"ascii\">\n";
   for (std::size_t c = 0; c < nb; ++c) {
-    double a, z;
-    principal_stresses(b.stress[c], a, z);
-    s1 += fmt::format("{:.9g}\n", a);
-    s3 += fmt::format("{:.9g}\n", z);
+    const reference::Principal p = reference::principal({b.stress[c][0], b.stress[c][1], b.stress[c][2]});
+    s1 += fmt::format("{:.9g}\n", p.s1);
+    s3 += fmt::format("{:.9g}\n", p.s3);
   }
   for (std::size_t c = 0; c < nl; ++c) {
     s1 += "0\n";

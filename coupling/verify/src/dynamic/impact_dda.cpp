@@ -12,7 +12,6 @@
 #include "ddafrac/coupling/impact_runs.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
 #include "ddafrac/dda/engine.hpp"
-#include "ddafrac/dda/run.hpp"  // principal_stresses
 #include "ddafrac/meshes/generate.hpp"
 #include "dynamic/impact_scene.hpp"
 #include "thread_scope.hpp"
@@ -73,9 +72,7 @@ void sample_gauges(const dda::Engine& engine, GaugeHistories& out) {
   const auto& gauge_blocks = engine.gauge_blocks();
   for (std::size_t g = 0; g < gauge_blocks.size(); ++g) {
     const auto& stress = engine.blocks().stress[static_cast<std::size_t>(gauge_blocks[g])];
-    double s1 = 0.0, s3 = 0.0;
-    dda::principal_stresses(stress, s1, s3);
-    add_sample(out, g, engine.time(), stress[1], s1);
+    add_sample(out, g, engine.time(), stress[1], reference::principal({stress[0], stress[1], stress[2]}).s1);
   }
 }
 

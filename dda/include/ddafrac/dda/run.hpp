@@ -95,7 +95,4 @@ RunResult run_simulation(Engine& engine, const RunOptions& options);
 /// 1 tensile, 2 shear). ASCII.
 std::string vtu_document(const Engine& engine);
 
-/// Maximum and minimum principal stress (tension positive) of (σxx, σyy, τxy).
-void principal_stresses(const Vec3& s, double& sigma1, double& sigma3);
-
 }  // namespace ddafrac::dda
