@@ -186,7 +186,7 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
   // two copies of the node drift apart and overlap, by more than the search distance on soft
   // joints, so the corner is judged as one vertex-vertex contact whatever the distance (up to
   // the deepest penetration kept) and the angle between the wedges, never as a vertex against
-  // the far edge of the other wedge (docs/design.md, "Contacts at shared mesh nodes").
+  // the far edge of the other wedge (docs/design.md §4.6).
   // Plain variables, not a structured binding: C++17 lets no lambda capture one (clang refuses).
   Index node_v = -1, node_u = -1;
   std::tie(node_v, node_u) = node_only_neighbours(s, a, b);

@@ -28,7 +28,7 @@ void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem
     c.tensile_strength = js.tensile_strength;
     // Two corners meeting at a shared mesh node have no face for friction to act along (the
     // reference line is one of four edges picked by the angle rules): the contact only keeps
-    // them from overlapping (docs/design.md, "Contacts at shared mesh nodes").
+    // them from overlapping (docs/design.md §4.6).
     // Frictionless means no shear spring either: with ks > 0 and tanφ = 0 the contact would
     // flip between locked and sliding at every open-close iteration.
     if (c.shared_node) c.tan_phi = c.ks = 0.0;

@@ -1,6 +1,6 @@
 #pragma once
 // A parallel sum whose result does not depend on the thread count: terms are added in fixed
-// chunks, and the chunk sums in order. Internal to the DDA library.
+// chunks, and the chunk sums in order. Internal to the DDA library; docs/design.md §10.2.
 
 #include <algorithm>
 #include <cstdint>

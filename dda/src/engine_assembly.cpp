@@ -11,6 +11,7 @@
 
 namespace ddafrac::dda {
 
+// Inertia, elasticity, initial stress, gravity, point loads and anchors: docs/design.md §3.
 void Engine::block_terms(double dt) {
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
   base_diag_.resize(static_cast<std::size_t>(n));

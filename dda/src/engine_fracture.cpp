@@ -1,4 +1,5 @@
-// Engine: joint forces and the fracture check of virtual joints after each accepted step.
+// Engine: joint forces and the fracture check of virtual joints after each accepted step
+// (docs/design.md §5).
 #include "ddafrac/dda/engine.hpp"
 
 #include <algorithm>

@@ -2,7 +2,8 @@
 // field that one step hands to the next, written with Boost.Serialization's binary archive
 // (exact doubles; a checkpoint is read back on the machine type that wrote it). Fields that the
 // constructor rebuilds from the scene and mesh (offsets, materials, masses, joint topology) are
-// not stored; the checkpoint's fingerprint of the state at t = 0 makes sure they match.
+// not stored; the checkpoint's fingerprint of the state at t = 0 makes sure they match
+// (docs/design.md §11).
 
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>

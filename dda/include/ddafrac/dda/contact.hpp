@@ -25,7 +25,7 @@ struct Contact {
   Index joint_set = -1;          // Scene::joint_sets index of its properties (-1: defaults)
   bool vertex_vertex = false;
   // Vertex and reference edge are copies of one mesh node in two blocks of one body that share
-  // that node but no intact joint at it (docs/design.md, "Contacts at shared mesh nodes"): found
+  // that node but no intact joint at it (docs/design.md §4.6): found
   // from t = 0 whatever the wedge angles, so that the copies can never overlap unseen. Such a
   // contact starts open at zero gap and never gets the cohesion of a real joint closed at t = 0.
   bool shared_node = false;
@@ -148,7 +148,8 @@ struct DetectionWorkspace {
   ContactsByVertex previous_by_vertex;               // the previous step's contacts
 };
 
-/// Finds all contacts (identity and geometry only; state is transferred afterwards). The
+/// Finds all contacts (identity and geometry only; state is transferred afterwards; the rules:
+/// docs/design.md §4.1). The
 /// previous step's contacts (sorted, as returned) only decide which reference line a closed
 /// vertex-vertex corner keeps; work.previous_by_vertex is left indexing them for
 /// transfer_contact_state. Deterministic: the output is sorted by (low block, high block,
@@ -163,6 +164,7 @@ void detect_contacts(const BlockSystem& blocks, const DetectionParams& params, D
 /// broken joint starts like a contact that was never bonded).
 /// Returns, per previous contact, whether some current contact carried its state (1) or it
 /// vanished (0). `previous_by_vertex` indexes `previous` (DetectionWorkspace after detection).
+/// (docs/design.md §4.7)
 std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& previous,
                                                  const ContactsByVertex& previous_by_vertex, std::vector<Contact>& current,
                                                  const std::vector<Joint>& joints, const BlockSystem& blocks);

@@ -24,7 +24,7 @@ double cohesive_length(const Contact& c, const BlockSystem& blocks, double angle
 
 /// Normal gap, shear displacement from the locked reference point, and their gradients with
 /// respect to the unknowns of both blocks, from the current geometry. Open contacts
-/// move their reference point to the current projection (s0 = 0).
+/// move their reference point to the current projection (s0 = 0). Formulas: docs/design.md §4.2.
 void linearise_contact(Contact& c, const BlockSystem& blocks);
 
 /// Exact (nonlinear) normal gap of a vertex against an edge, positive when the vertex is
@@ -32,7 +32,8 @@ void linearise_contact(Contact& c, const BlockSystem& blocks);
 double normal_gap(double x1, double y1, double x2, double y2, double x3, double y3);
 
 /// Spring and load coefficients of a contact in its trial state for the assembly:
-/// K += kn_eff·[e;g][e;g]^T + ks_eff·[es;gs][es;gs]^T,  F += fn_rhs·[e;g] + fs_rhs·[es;gs].
+/// K += kn_eff·[e;g][e;g]^T + ks_eff·[es;gs][es;gs]^T,  F += fn_rhs·[e;g] + fs_rhs·[es;gs]
+/// (per state: the table of docs/design.md §4.3).
 struct ContactCoefficients {
   double kn_eff = 0.0, ks_eff = 0.0, fn_rhs = 0.0, fs_rhs = 0.0;
 };
@@ -51,7 +52,7 @@ ContactCoefficients contact_coefficients(const Contact& c);
 /// `tolerance` (m) is a hysteresis band that keeps contacts sitting exactly at a threshold from
 /// flipping forever: an open contact closes only once it overlaps by more than `tolerance`, a locked one slides only if
 /// its shear exceeds the friction limit by ks·tolerance, a sliding one locks only when its
-/// shear in the sliding direction falls below the limit by ks·tolerance.
+/// shear in the sliding direction falls below the limit by ks·tolerance. (docs/design.md §4.3–§4.5)
 bool judge_contact(Contact& c, const Vec6& d_vertex_block, const Vec6& d_edge_block, bool bonded,
                    double tolerance = 0.0);
 

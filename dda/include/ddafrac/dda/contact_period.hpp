@@ -1,7 +1,8 @@
 #pragma once
 // The shortest period a contact spring can have in a model: two of its lightest blocks on the
 // stiffest spring, T = 2π·√(m_r / kn) with the reduced mass m_r = m/2. A time step that is not
-// a small fraction of it cannot follow the contact: blocks rock and bounce instead of resting.
+// a small fraction of it cannot follow the contact: blocks rock and bounce instead of resting
+// (docs/design.md §7).
 
 #include "ddafrac/dda/engine.hpp"
 

@@ -1,5 +1,5 @@
 #pragma once
-// The energy ledger of a run (docs/design.md, "Energy ledger"): what the blocks store, what the
+// The energy ledger of a run (docs/design.md §9): what the blocks store, what the
 // loads and supports put in, and where the rest went, so that a run shows whether it created
 // energy.
 //

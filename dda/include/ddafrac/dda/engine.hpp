@@ -136,6 +136,7 @@ class Engine {
   /// step on (the breaking step is not re-solved: a joint carries at most one step's load
   /// increment beyond its strength, test dda_fracture/tension_break_at_the_tensile_strength).
   /// Throws NumericalTrouble naming the step, time and worst block or contact.
+  /// The phases of a step, file by file: docs/design.md §8; the step-size control: §7.
   StepReport step(double max_dt = 1e300);
 
   double time() const { return time_; }

@@ -1,5 +1,5 @@
 #pragma once
-// Polygon integrals in closed form and the DDA displacement function T.
+// Polygon integrals in closed form and the DDA displacement function T (docs/design.md §2).
 
 #include <cmath>
 #include <cstddef>

@@ -3,7 +3,7 @@
 // off-diagonal block per contacting pair (K_ab for a < b; K_ba = K_ab^T is implied).
 // Solvers: PCG with 6x6 block-Jacobi preconditioner (warm-started), or Eigen's SimplicialLDLT.
 // Every reduction runs over fixed-size chunks summed in order: results do not depend on the
-// number of OpenMP threads.
+// number of OpenMP threads. The design: docs/design.md §6 (system, solvers) and §10.2.
 
 #include <cstdint>
 #include <vector>

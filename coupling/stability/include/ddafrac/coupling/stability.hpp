@@ -118,7 +118,7 @@ StabilityResult run_stability_case(const StabilityCase& c, const std::filesystem
 
 /// stability.csv: one row per case, every field of StabilityResult.
 std::string stability_csv(const std::vector<StabilityResult>& results);
-/// stability.md: the table of the README (and the stated bounds above it).
+/// stability.md: the table of docs/results/stability.md (and the stated bounds above it).
 std::string stability_markdown(const std::vector<StabilityResult>& results);
 
 }  // namespace ddafrac::coupling
