@@ -127,6 +127,7 @@ void Engine::assemble(bool whole) {
     matrix_.off_nonzero[p] = nonzero ? 1 : 0;
     if (nonzero) matrix_.off[p] = k;
   }
+  index_nonzero_pairs(matrix_, set_);
 }
 
 bool Engine::judge(int& changed_first) {

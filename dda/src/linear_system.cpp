@@ -13,20 +13,46 @@ namespace ddafrac::dda {
 
 const char* to_string(SolverKind s) { return s == SolverKind::Pcg ? "pcg-block-jacobi" : "eigen-simplicial-ldlt"; }
 
-void multiply(const BlockMatrix& k, const ContactSet& t, const BlockVector& x, BlockVector& y) {
+void index_nonzero_pairs(BlockMatrix& k, const ContactSet& t) {
+  const auto n = static_cast<std::int64_t>(k.diag.size());
+  k.row_offsets.resize(static_cast<std::size_t>(n) + 1);
+  k.row_offsets[0] = 0;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    Index count = 0;
+    for (Index m = t.block_pair_offsets[i]; m < t.block_pair_offsets[i + 1]; ++m) count += k.off_nonzero[t.block_pairs[m]];
+    k.row_offsets[i + 1] = count;
+  }
+  for (std::int64_t i = 0; i < n; ++i) k.row_offsets[i + 1] += k.row_offsets[i];
+  k.row_pairs.resize(static_cast<std::size_t>(k.row_offsets[n]));
+  k.row_others.resize(static_cast<std::size_t>(k.row_offsets[n]));
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    Index at = k.row_offsets[i];
+    for (Index m = t.block_pair_offsets[i]; m < t.block_pair_offsets[i + 1]; ++m) {
+      const Index p = t.block_pairs[m];
+      if (!k.off_nonzero[p]) continue;
+      const ContactPair& pr = t.pairs[p];
+      k.row_pairs[at] = p;
+      k.row_others[at] = pr.a == i ? pr.b : pr.a;
+      ++at;
+    }
+  }
+}
+
+void multiply(const BlockMatrix& k, const BlockVector& x, BlockVector& y) {
   const auto n = static_cast<std::int64_t>(x.size());
   y.resize(x.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     Vec6 acc = k.diag[i] * x[i];
-    for (Index m = t.block_pair_offsets[i]; m < t.block_pair_offsets[i + 1]; ++m) {
-      const Index p = t.block_pairs[m];
-      if (!k.off_nonzero[p]) continue;
-      const ContactPair& pr = t.pairs[p];
-      if (pr.a == i)
-        acc.noalias() += k.off[p] * x[pr.b];
+    for (Index m = k.row_offsets[i]; m < k.row_offsets[i + 1]; ++m) {
+      const Index p = k.row_pairs[m], other = k.row_others[m];
+      // K_ab is stored for a < b: the row of a uses it, the row of b its transpose.
+      if (other > i)
+        acc.noalias() += k.off[p] * x[other];
       else
-        acc.noalias() += k.off[p].transpose() * x[pr.a];
+        acc.noalias() += k.off[p].transpose() * x[other];
     }
     y[i] = acc;
   }
@@ -57,7 +83,7 @@ SolveReport solve_pcg(const BlockMatrix& k, const ContactSet& t, const BlockVect
     rep.converged = true;
     return rep;
   }
-  multiply(k, t, x, w.q);
+  multiply(k, x, w.q);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     w.r[i] = b[i] - w.q[i];
@@ -69,7 +95,7 @@ SolveReport solve_pcg(const BlockMatrix& k, const ContactSet& t, const BlockVect
   const double target = cfg.tolerance * bnorm;
   int it = 0;
   while (rnorm > target && it < cfg.max_iterations) {
-    multiply(k, t, w.p, w.q);
+    multiply(k, w.p, w.q);
     const double pq = dot(w.p, w.q);
     if (!(pq > 0.0)) break;  // not positive definite (or NaN): give up, caller reports it
     const double alpha = rz / pq;

@@ -23,12 +23,18 @@ struct BlockMatrix {
   // Whether a diagonal block changed since the previous solve (the assembly sets it): the
   // preconditioner inverts only those again. Empty: all changed.
   std::vector<std::uint8_t> diag_changed;
+  // Per block row, the pairs with a nonzero off block (CSR, in the row's pair order) and the
+  // other block of each: the product walks these alone (index_nonzero_pairs).
+  std::vector<Index> row_offsets, row_pairs, row_others;
 };
+
+/// Fills k.row_* from k.off_nonzero and the topology (after every assembly).
+void index_nonzero_pairs(BlockMatrix& k, const ContactSet& topology);
 
 using BlockVector = std::vector<Vec6>;
 
-/// y = K x, parallel over block rows (each row gathers its pairs in the fixed list order).
-void multiply(const BlockMatrix& k, const ContactSet& topology, const BlockVector& x, BlockVector& y);
+/// y = K x, parallel over block rows (each row gathers its nonzero pairs in the fixed list order).
+void multiply(const BlockMatrix& k, const BlockVector& x, BlockVector& y);
 
 /// Deterministic dot product (chunked, chunk sums added in order).
 double dot(const BlockVector& a, const BlockVector& b);
