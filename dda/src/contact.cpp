@@ -288,18 +288,22 @@ void vertex_data(const BlockSystem& s, DetectionWorkspace& w) {
 }  // namespace
 
 void ContactsByVertex::build(const std::vector<Contact>& list, std::size_t vertex_count) {
+  const auto nc = static_cast<std::int64_t>(list.size());
+  std::vector<Index> vertex(list.size());  // read once in parallel; the serial passes walk this
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < nc; ++k) vertex[k] = list[k].vertex;
   offsets.assign(vertex_count + 1, 0);
-  for (const Contact& c : list) ++offsets[static_cast<std::size_t>(c.vertex) + 1];
+  for (const Index v : vertex) ++offsets[static_cast<std::size_t>(v) + 1];
   for (std::size_t v = 0; v < vertex_count; ++v) offsets[v + 1] += offsets[v];
   contacts.resize(list.size());
+  std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
+  for (std::int64_t k = 0; k < nc; ++k) contacts[static_cast<std::size_t>(fill[static_cast<std::size_t>(vertex[k])]++)] = static_cast<Index>(k);
   low.resize(list.size());
   high.resize(list.size());
   closed_corner_edge.resize(list.size());
-  std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
-  for (std::size_t k = 0; k < list.size(); ++k) {
-    const auto m = static_cast<std::size_t>(fill[static_cast<std::size_t>(list[k].vertex)]++);
-    contacts[m] = static_cast<Index>(k);
-    const Contact& c = list[k];
+#pragma omp parallel for schedule(static)
+  for (std::int64_t m = 0; m < nc; ++m) {
+    const Contact& c = list[static_cast<std::size_t>(contacts[m])];
     low[m] = c.pair_low();
     high[m] = c.pair_high();
     closed_corner_edge[m] = c.vertex_vertex && c.state != ContactState::Open ? c.edge0 : -1;
@@ -603,41 +607,48 @@ std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& pre
 }
 
 void build_contact_topology(ContactSet& set, std::size_t nb) {
-  set.pairs.clear();
   const auto& cs = set.contacts;
-  for (std::size_t k = 0; k < cs.size();) {
-    ContactPair p;
-    p.a = cs[k].pair_low();
-    p.b = cs[k].pair_high();
-    p.first = static_cast<Index>(k);
-    while (k < cs.size() && cs[k].pair_low() == p.a && cs[k].pair_high() == p.b) ++k;
-    p.last = static_cast<Index>(k);
-    set.pairs.push_back(p);
+  const auto nc = static_cast<std::int64_t>(cs.size());
+  // The blocks of every contact, read once in parallel: the serial passes below then walk these
+  // small arrays instead of the contact records.
+  std::vector<Index> low(cs.size()), high(cs.size());
+  std::vector<std::uint8_t> starts_pair(cs.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < nc; ++k) {
+    low[k] = cs[k].pair_low();
+    high[k] = cs[k].pair_high();
+    starts_pair[k] = k == 0 || cs[k - 1].pair_low() != low[k] || cs[k - 1].pair_high() != high[k];
   }
-  set.block_contact_offsets.assign(nb + 1, 0);
-  for (const Contact& c : cs) {
-    ++set.block_contact_offsets[static_cast<std::size_t>(c.vblock) + 1];
-    ++set.block_contact_offsets[static_cast<std::size_t>(c.eblock) + 1];
+  set.pairs.clear();
+  for (std::int64_t k = 0; k < nc; ++k) {
+    if (starts_pair[k]) {
+      if (!set.pairs.empty()) set.pairs.back().last = static_cast<Index>(k);
+      set.pairs.push_back({low[k], high[k], static_cast<Index>(k), static_cast<Index>(k)});
+    }
   }
-  for (std::size_t b = 0; b < nb; ++b) set.block_contact_offsets[b + 1] += set.block_contact_offsets[b];
-  set.block_contacts.assign(static_cast<std::size_t>(set.block_contact_offsets[nb]), 0);
-  std::vector<Index> fill(set.block_contact_offsets.begin(), set.block_contact_offsets.end() - 1);
-  for (std::size_t k = 0; k < cs.size(); ++k) {
-    set.block_contacts[static_cast<std::size_t>(fill[static_cast<std::size_t>(cs[k].vblock)]++)] = static_cast<Index>(k);
-    set.block_contacts[static_cast<std::size_t>(fill[static_cast<std::size_t>(cs[k].eblock)]++)] = static_cast<Index>(k);
-  }
-  set.block_pair_offsets.assign(nb + 1, 0);
-  for (const ContactPair& p : set.pairs) {
-    ++set.block_pair_offsets[static_cast<std::size_t>(p.a) + 1];
-    ++set.block_pair_offsets[static_cast<std::size_t>(p.b) + 1];
-  }
-  for (std::size_t b = 0; b < nb; ++b) set.block_pair_offsets[b + 1] += set.block_pair_offsets[b];
-  set.block_pairs.assign(static_cast<std::size_t>(set.block_pair_offsets[nb]), 0);
-  fill.assign(set.block_pair_offsets.begin(), set.block_pair_offsets.end() - 1);
-  for (std::size_t k = 0; k < set.pairs.size(); ++k) {
-    set.block_pairs[static_cast<std::size_t>(fill[static_cast<std::size_t>(set.pairs[k].a)]++)] = static_cast<Index>(k);
-    set.block_pairs[static_cast<std::size_t>(fill[static_cast<std::size_t>(set.pairs[k].b)]++)] = static_cast<Index>(k);
-  }
+  if (!set.pairs.empty()) set.pairs.back().last = static_cast<Index>(nc);
+  // Per block, ascending: a contact or pair is listed under its low block, then its high block.
+  auto by_block = [nb](std::size_t count, auto block_a, auto block_b, std::vector<Index>& offsets, std::vector<Index>& items) {
+    offsets.assign(nb + 1, 0);
+    for (std::size_t k = 0; k < count; ++k) {
+      ++offsets[static_cast<std::size_t>(block_a(k)) + 1];
+      ++offsets[static_cast<std::size_t>(block_b(k)) + 1];
+    }
+    for (std::size_t b = 0; b < nb; ++b) offsets[b + 1] += offsets[b];
+    items.assign(static_cast<std::size_t>(offsets[nb]), 0);
+    std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
+    for (std::size_t k = 0; k < count; ++k) {
+      items[static_cast<std::size_t>(fill[static_cast<std::size_t>(block_a(k))]++)] = static_cast<Index>(k);
+      items[static_cast<std::size_t>(fill[static_cast<std::size_t>(block_b(k))]++)] = static_cast<Index>(k);
+    }
+  };
+  // (A contact's two blocks differ, so listing it under low/high gives the lists vblock/eblock would.)
+  by_block(
+      cs.size(), [&](std::size_t k) { return low[k]; }, [&](std::size_t k) { return high[k]; },
+      set.block_contact_offsets, set.block_contacts);
+  by_block(
+      set.pairs.size(), [&](std::size_t k) { return set.pairs[k].a; }, [&](std::size_t k) { return set.pairs[k].b; },
+      set.block_pair_offsets, set.block_pairs);
 }
 
 }  // namespace ddafrac::dda
