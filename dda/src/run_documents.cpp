@@ -85,6 +85,8 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
                 {"output_interval", an.output_interval},
                 {"gravity", {an.gravity[0], an.gravity[1]}},
                 {"open_close_max", an.open_close_max},
+                {"search_distance_factor", an.search_distance_factor},
+                {"pair_list_skin_factor", an.pair_list_skin_factor},
                 {"blocks", e.blocks().block_count()},
                 {"virtual_joints", e.blocks().joints.size()}};
   j["threads"] = o.threads;
