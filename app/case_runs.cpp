@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -66,7 +67,8 @@ std::string csv_field(const std::string& text) {
 std::vector<CaseRun> load_case_runs(const std::vector<fs::path>& scene_files, const std::vector<std::string>& overrides,
                                     const fs::path& out, const std::string& what) {
   std::vector<CaseRun> cases;
-  std::string problems;
+  // The same problem in many cases (a bad --set value, a shared base scene) is said once.
+  std::vector<std::pair<std::string, std::vector<std::string>>> problems;  // message, files
   for (const fs::path& file : scene_files) {
     try {
       CaseRun c;
@@ -75,10 +77,16 @@ std::vector<CaseRun> load_case_runs(const std::vector<fs::path>& scene_files, co
       c.run_dir = out / c.scene.name;
       cases.push_back(std::move(c));
     } catch (const scene::SceneError& e) {
-      problems += fmt::format("\n{}: {}", file.string(), e.what());
+      const auto same = std::find_if(problems.begin(), problems.end(), [&](const auto& p) { return p.first == e.what(); });
+      if (same == problems.end()) problems.push_back({e.what(), {file.string()}});
+      else same->second.push_back(file.string());
     }
   }
-  if (!problems.empty()) throw CommandFailed(what + " have problems (nothing was run):" + problems);
+  if (!problems.empty()) {
+    std::string text;
+    for (const auto& [message, files] : problems) text += fmt::format("\n{}: {}", fmt::join(files, ", "), message);
+    throw CommandFailed(what + " have problems (nothing was run):" + text);
+  }
   refuse_shared_names(cases);
   return cases;
 }
