@@ -1,7 +1,8 @@
 #pragma once
 // Crack measures that may converge with the mesh when crack counts do not: the length of the
 // broken joints, the fragments (groups of blocks still joined by intact virtual joints), the
-// largest fragment's area, the time of the first crack and of the first through-going crack.
+// largest fragment's area, the time of the first crack and of the first through-going crack
+// (docs/design.md §5).
 //
 // They read only the block system's joints and blocks and the crack events. Joints only ever
 // break, so the joints broken at time t are those whose crack event is at or before t: the
