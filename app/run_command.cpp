@@ -330,9 +330,9 @@ void run_run(const RunArguments& given) {
                "scheme accounts for (the energy columns of history.csv show when)\n",
                ledger.largest_balance_error, args.energy_tolerance, ledger.balance_error());
   if (result.exit_status != dda::kRunWriteFailed)
-    fmt::print("wrote {}/{{summary.json, history.csv, cracks.csv, crack_intervals.csv{}{}{}}}\n", out.string(),
-               scene.gauges.empty() ? "" : ", gauges.csv", engine->blocks().anchors.empty() ? "" : ", loading.csv",
-               ro.vtk ? ", run.pvd, vtk/" : "");
+    fmt::print("wrote {}/{{summary.json, history.csv, cracks.csv, crack_intervals.csv{}{}{}{}}}\n", out.string(),
+               engine->blocks().joints.empty() ? "" : ", fragments.csv", scene.gauges.empty() ? "" : ", gauges.csv",
+               engine->blocks().anchors.empty() ? "" : ", loading.csv", ro.vtk ? ", run.pvd, vtk/" : "");
   std::fflush(stdout);
   // Figures of whatever was written (also after an interruption or numerical trouble).
   if (scene.output.figures && !args.no_figures) {

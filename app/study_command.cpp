@@ -12,6 +12,7 @@ void register_study_command(CLI::App& app) {
   CLI::App* study = app.add_subcommand("study", "studies: stability over stiff and extreme cases (and, with the FEM, convergence)");
   study->require_subcommand(1);
   register_study_stability(*study);  // study_stability.cpp
+  register_study_source(*study);     // study_source.cpp
 #ifdef DDAFRAC_WITH_FEM
   register_study_convergence(*study);  // study_convergence.cpp
   register_study_penalty(*study);      // study_penalty.cpp

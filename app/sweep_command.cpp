@@ -6,11 +6,8 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
-#include <fmt/ranges.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -19,15 +16,13 @@
 #include <sstream>
 #include <thread>
 
+#include "case_runs.hpp"
 #include "commands.hpp"
 #include "option_checks.hpp"
 #include "ddafrac/common/whole_file.hpp"
-#include "ddafrac/dda/checkpoint.hpp"
-#include "ddafrac/dda/run.hpp"
 #include "ddafrac/scene/parse.hpp"
 #include "ddafrac/scene/sweep.hpp"
 #include "figures.hpp"
-#include "subprocess.hpp"
 #include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::app {
@@ -35,7 +30,6 @@ namespace ddafrac::app {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 constexpr double kDegree = common::kRadiansPerDegree;
 
@@ -48,19 +42,8 @@ struct SweepArguments {
   std::optional<double> checkpoint_every;  // s, passed on to every run (default: run's own)
 };
 
-/// How a case starts: from t = 0, from its checkpoint, or not at all (finished before).
-enum class Start { Fresh, FromCheckpoint, Finished };
-
-/// One case: its scene (validated before anything runs) and, once run, its results.
-struct Case {
-  fs::path scene_file;
-  scene::Scene scene;
-  fs::path run_dir;
-  Start start = Start::Fresh;
-  int exit_code = -1;
-  double wall_seconds = 0.0;
-  std::optional<std::array<double, 3>> cracks;  // total, tensile, shear at the sweep's crack time
-};
+/// Crack counts of a case: total, tensile, shear at the sweep's crack time.
+using Cracks = std::optional<std::array<double, 3>>;
 
 /// The impact parameters of a case (θ in degrees, γ, v0 in m/s), if it is an impact scene.
 std::string impact_columns(const scene::Scene& s) {
@@ -72,7 +55,7 @@ std::string impact_columns(const scene::Scene& s) {
 }
 
 /// Crack counts at time t from a run's history.csv: the last row at or before t.
-std::optional<std::array<double, 3>> cracks_at(const fs::path& history, double t) {
+Cracks cracks_at(const fs::path& history, double t) {
   std::ifstream in(history);
   std::string line;
   if (!std::getline(in, line)) return std::nullopt;
@@ -85,7 +68,7 @@ std::optional<std::array<double, 3>> cracks_at(const fs::path& history, double t
   for (const char* key : {"t", "cracks_total", "cracks_tensile", "cracks_shear"})
     if (!column.count(key)) return std::nullopt;
   constexpr double kTimeSlack = 1e-9;  // relative
-  std::optional<std::array<double, 3>> found;
+  Cracks found;
   while (std::getline(in, line)) {
     std::vector<std::string> cells;
     std::stringstream row(line);
@@ -98,148 +81,12 @@ std::optional<std::array<double, 3>> cracks_at(const fs::path& history, double t
   return found;
 }
 
-/// Each case runs in the folder of its scene name: two cases of one name would overwrite each
-/// other's run, so they are refused before anything runs.
-void refuse_shared_names(const std::vector<Case>& cases) {
-  std::map<std::string, std::vector<std::string>> files_of;
-  for (const Case& c : cases) files_of[c.scene.name].push_back(c.scene_file.string());
-  std::string problems;
-  for (const auto& [name, files] : files_of)
-    if (files.size() > 1) problems += fmt::format("\n  \"{}\": {}", name, fmt::join(files, ", "));
-  if (!problems.empty())
-    throw CommandFailed("cases share a scene name, so their runs would overwrite each other (nothing was run; give "
-                        "each a name = \"...\"):" + problems);
-}
-
-/// A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + '"';
-}
-
-std::vector<Case> load_cases(const scene::Sweep& sweep, const std::vector<std::string>& overrides, const fs::path& out) {
-  std::vector<Case> cases;
-  std::string problems;
-  for (const fs::path& file : sweep.cases) {
-    try {
-      Case c;
-      c.scene_file = file;
-      c.scene = scene::load_scene(file, overrides);
-      c.run_dir = out / c.scene.name;
-      cases.push_back(std::move(c));
-    } catch (const scene::SceneError& e) {
-      problems += fmt::format("\n{}: {}", file.string(), e.what());
-    }
-  }
-  if (!problems.empty()) throw CommandFailed("the sweep's cases have problems (nothing was run):" + problems);
-  refuse_shared_names(cases);
-  return cases;
-}
-
-std::vector<std::string> run_arguments(const Case& c, const scene::Sweep& sweep, const SweepArguments& args,
-                                       const std::vector<std::string>& overrides) {
-  std::vector<std::string> argv{own_executable().string(), "run", "--threads", std::to_string(sweep.threads)};
-  if (args.checkpoint_every) {
-    argv.push_back("--checkpoint-every");
-    argv.push_back(fmt::format("{:.17g}", *args.checkpoint_every));
-  }
-  if (c.start == Start::FromCheckpoint) {
-    argv.push_back("--resume");
-    argv.push_back(c.run_dir.string());
-    return argv;
-  }
-  for (const std::string& item : {c.scene_file.string(), std::string("--out"), c.run_dir.string()}) argv.push_back(item);
-  for (const std::string& o : overrides) {
-    argv.push_back("--set");
-    argv.push_back(o);
-  }
-  return argv;
-}
-
-/// The text of a file, or nothing if it cannot be read.
-std::optional<std::string> file_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-/// A run's summary.json, or a discarded value if it cannot be read.
-nlohmann::json read_summary(const fs::path& run_dir) {
-  std::ifstream in(run_dir / "summary.json");
-  return nlohmann::json::parse(in, nullptr, false);
-}
-
-/// A run's wall time over all its parts (a resumed run's included), from its summary.json.
-std::optional<double> summary_wall(const nlohmann::json& summary) {
-  if (summary.is_discarded() || !summary.contains("wall_time")) return std::nullopt;
-  return summary["wall_time"].value("total", 0.0);
-}
-
-/// For a resumed sweep: a case whose run completed with the scene it has now is finished (its
-/// wall time is the run's); one with a checkpoint of that scene continues from it; any other
-/// (never started, failed, or its scene changed since) starts again from t = 0.
-void decide_start(Case& c) {
-  const nlohmann::json summary = read_summary(c.run_dir);
-  const bool same_scene = file_text(c.run_dir / dda::kResolvedSceneFile) == c.scene.resolved_text;
-  if (same_scene && !summary.is_discarded() && summary.contains("exit") &&
-      summary["exit"].value("reason", "") == "completed") {
-    c.start = Start::Finished;
-    c.exit_code = 0;
-    c.wall_seconds = summary_wall(summary).value_or(0.0);
-    return;
-  }
-  if (same_scene && fs::exists(c.run_dir / dda::kCheckpointFile)) {
-    c.start = Start::FromCheckpoint;
-    return;
-  }
-  c.start = Start::Fresh;
-}
-
-/// Runs the cases, `parallel` at a time, and records exit codes and wall times.
-void run_cases(std::vector<Case>& cases, const scene::Sweep& sweep, const SweepArguments& args,
-               const std::vector<std::string>& overrides, int parallel) {
-  std::map<pid_t, std::pair<std::size_t, Clock::time_point>> running;
-  std::size_t next = 0, done = 0;
-  while (done < cases.size()) {
-    while (next < cases.size() && static_cast<int>(running.size()) < parallel) {
-      Case& c = cases[next++];
-      if (c.start == Start::Finished) {
-        fmt::print("[{}/{}] {} finished before (kept)\n", ++done, cases.size(), c.scene.name);
-        continue;
-      }
-      fs::create_directories(c.run_dir);
-      const fs::path log = c.run_dir / "run.log";
-      // A resumed run's log goes on after the stopped one's.
-      if (c.start == Start::Fresh) fs::remove(log);
-      running[spawn_process(run_arguments(c, sweep, args, overrides), log)] = {next - 1, Clock::now()};
-      fmt::print("{} {} ({})\n", c.start == Start::FromCheckpoint ? "resumed " : "started ", c.scene.name,
-                 c.scene_file.string());
-    }
-    if (done == cases.size()) break;
-    const Finished finished = wait_for_any_child();
-    const auto it = running.find(finished.pid);
-    if (it == running.end()) continue;
-    Case& c = cases[it->second.first];
-    c.exit_code = finished.exit_code;
-    c.wall_seconds = std::chrono::duration<double>(Clock::now() - it->second.second).count();
-    running.erase(it);
-    ++done;
-    fmt::print("[{}/{}] {} {} in {:.1f} s{}\n", done, cases.size(), c.scene.name,
-               c.exit_code == 0 ? "finished" : "FAILED", c.wall_seconds,
-               c.exit_code == 0 ? "" : fmt::format(" (exit status {}; see {})", c.exit_code, (c.run_dir / "run.log").string()));
-    std::fflush(stdout);
-  }
-}
-
-std::string table_csv(const std::vector<Case>& cases, const fs::path& out) {
+std::string table_csv(const std::vector<CaseRun>& cases, const std::vector<Cracks>& cracks_of, const fs::path& out) {
   std::string csv = "case,scene,theta_deg,gamma,v0,cracks_total,cracks_tensile,cracks_shear,run_time_s,exit_status,run_dir\n";
-  for (const Case& c : cases) {
-    const std::string cracks =
-        c.cracks ? fmt::format("{:g},{:g},{:g}", (*c.cracks)[0], (*c.cracks)[1], (*c.cracks)[2]) : ",,";
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const CaseRun& c = cases[k];
+    const Cracks& n = cracks_of[k];
+    const std::string cracks = n ? fmt::format("{:g},{:g},{:g}", (*n)[0], (*n)[1], (*n)[2]) : ",,";
     csv += fmt::format("{},{},{},{},{:.3f},{},{}\n", c.scene.name, csv_field(c.scene_file.string()),
                        impact_columns(c.scene), cracks, c.wall_seconds, c.exit_code,
                        csv_field(fs::relative(c.run_dir, out).string()));
@@ -247,18 +94,19 @@ std::string table_csv(const std::vector<Case>& cases, const fs::path& out) {
   return csv;
 }
 
-void print_table(const std::vector<Case>& cases, double crack_time) {
+void print_table(const std::vector<CaseRun>& cases, const std::vector<Cracks>& cracks_of, double crack_time) {
   fmt::print("\n{:<18} {:>7} {:>6} {:>6} {:>8} {:>8} {:>8} {:>9}\n", "case", "θ (°)", "γ", "v0", "cracks", "tensile",
              "shear", "time (s)");
   fmt::print("{:<18} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8}\n", "", "", "", "m/s",
              fmt::format("@{:g}µs", crack_time * 1e6), "", "");
-  for (const Case& c : cases) {
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const CaseRun& c = cases[k];
     std::string columns = impact_columns(c.scene);
     std::replace(columns.begin(), columns.end(), ',', ' ');
     std::stringstream parts(columns);
     std::string theta, gamma, v0;
     parts >> theta >> gamma >> v0;
-    const auto count = [&](int i) { return c.cracks ? fmt::format("{:g}", (*c.cracks)[i]) : std::string("-"); };
+    const auto count = [&](int i) { return cracks_of[k] ? fmt::format("{:g}", (*cracks_of[k])[i]) : std::string("-"); };
     fmt::print("{:<18} {:>6} {:>6} {:>6} {:>8} {:>8} {:>8} {:>9.1f}\n", c.scene.name, theta, gamma, v0, count(0),
                count(1), count(2), c.wall_seconds);
   }
@@ -274,7 +122,7 @@ void run_sweep(const SweepArguments& args) {
   std::vector<std::string> overrides = sweep.overrides;
   overrides.insert(overrides.end(), args.overrides.begin(), args.overrides.end());
   const fs::path out = args.out.empty() ? fs::path("runs") / sweep.name : fs::path(args.out);
-  std::vector<Case> cases = load_cases(sweep, overrides, out);
+  std::vector<CaseRun> cases = load_case_runs(sweep.cases, overrides, out, "the sweep's cases");
 
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int parallel = args.parallel > 0 ? args.parallel
@@ -284,21 +132,19 @@ void run_sweep(const SweepArguments& args) {
              sweep.threads, out.string());
   fs::create_directories(out);
   if (args.resume)
-    for (Case& c : cases) decide_start(c);
-  run_cases(cases, sweep, args, overrides, parallel);
-  // A resumed case took the time of all its parts.
-  for (Case& c : cases)
-    if (c.start == Start::FromCheckpoint) c.wall_seconds = summary_wall(read_summary(c.run_dir)).value_or(c.wall_seconds);
+    for (CaseRun& c : cases) decide_start(c);
+  run_cases(cases, {sweep.threads, parallel, args.checkpoint_every, overrides, {}});
 
-  for (Case& c : cases) c.cracks = cracks_at(c.run_dir / "history.csv", sweep.crack_time);
+  std::vector<Cracks> cracks;
+  for (const CaseRun& c : cases) cracks.push_back(cracks_at(c.run_dir / "history.csv", sweep.crack_time));
   const fs::path table = out / "sweep.csv";
-  common::write_whole_text(table, table_csv(cases, out));
-  print_table(cases, sweep.crack_time);
+  common::write_whole_text(table, table_csv(cases, cracks, out));
+  print_table(cases, cracks, sweep.crack_time);
   fmt::print("\nwrote {}\n", table.string());
   std::fflush(stdout);  // before the plotting script prints to the same terminal
   draw_figures({"sweep", table.string(), "--out", (out / "figures").string()});
 
-  const auto failed = std::count_if(cases.begin(), cases.end(), [](const Case& c) { return c.exit_code != 0; });
+  const auto failed = std::count_if(cases.begin(), cases.end(), [](const CaseRun& c) { return c.exit_code != 0; });
   if (failed > 0) throw CommandFailed(fmt::format("{} of {} cases failed (see their run.log)", failed, cases.size()));
 }
 

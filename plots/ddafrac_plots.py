@@ -5,6 +5,7 @@ ddafrac calls this after a run; it can also be run by hand to redraw or restyle 
 
     ddafrac_plots.py run RUN_DIR [--times T1,T2,...] [--crack-interval S]
     ddafrac_plots.py sweep TABLE.csv --out DIR
+    ddafrac_plots.py study-source STUDY_DIR [--times T1,T2,...]   (study_source_plots.py)
 
 It reads only the files a run writes (history.csv, gauges.csv, cracks.csv, vtk/run.pvd and the
 snapshots it lists, summary.json) and writes PNG files into RUN_DIR/figures/, each whole
@@ -129,14 +130,19 @@ def plot_crack_counts(history, crack_interval, out_dir, title):
     save(figure, os.path.join(out_dir, "crack_counts.png"))
 
 
-def plot_gauges(gauges, out_dir, title):
+def draw_gauge_lines(axes, gauges):
+    """σ1 (MPa) against time (µs) of every gauge of a gauges.csv, one line each."""
     t = numbers(gauges, "t") * MICROSECONDS
     sigma1 = numbers(gauges, "sigma1") * MEGAPASCAL
     names = gauges["gauge"]
-    figure, axes = plt.subplots(figsize=(8, 4.5))
     for name in dict.fromkeys(names):  # in first-seen order
         mask = np.array([n == name for n in names])
         axes.plot(t[mask], sigma1[mask], label=name)
+
+
+def plot_gauges(gauges, out_dir, title):
+    figure, axes = plt.subplots(figsize=(8, 4.5))
+    draw_gauge_lines(axes, gauges)
     axes.set_xlabel("time (µs)")
     axes.set_ylabel("σ1 (MPa, tension positive)")
     axes.set_title(f"{title}: maximum principal stress at the gauges")
@@ -179,18 +185,18 @@ def read_vtu(path):
     return points, cells, types, cell_data
 
 
-def plot_crack_pattern(snapshot_time, path, out_dir, title):
-    """Blocks coloured by σ1 with the broken joints drawn over them."""
+def draw_pattern(axes, path, limit=None):
+    """Blocks of a snapshot coloured by σ1 (MPa) with the broken joints drawn over them; returns
+    the blocks' collection (for a colour bar)."""
     points, cells, types, cell_data = read_vtu(path)
     polygons = [points[c] for c, k in zip(cells, types) if k != VTK_LINE]
     polygon_index = [i for i, k in enumerate(types) if k != VTK_LINE]
     sigma1 = cell_data["sigma1"][polygon_index] * MEGAPASCAL
-    figure, axes = plt.subplots(figsize=(7, 7))
-    limit = max(1e-12, np.percentile(np.abs(sigma1), 99))
+    if limit is None:
+        limit = max(1e-12, np.percentile(np.abs(sigma1), 99))
     collection = PolyCollection(polygons, array=sigma1, cmap="RdBu_r", clim=(-limit, limit),
                                 edgecolors="face", linewidths=0.2)
     axes.add_collection(collection)
-    figure.colorbar(collection, ax=axes, shrink=0.8, label="σ1 (MPa, tension positive)")
     crack_index = [i for i, k in enumerate(types) if k == VTK_LINE]
     if crack_index:
         kinds = cell_data.get("crack_type")
@@ -199,9 +205,17 @@ def plot_crack_pattern(snapshot_time, path, out_dir, title):
             if segments:
                 axes.add_collection(LineCollection(segments, colors=colour, linewidths=1.2,
                                                    label=f"{CRACK_NAMES[kind]} ({len(segments)})"))
-        axes.legend(loc="upper right")
+        axes.legend(loc="upper right", fontsize="small")
     axes.autoscale_view()
     axes.set_aspect("equal")
+    return collection
+
+
+def plot_crack_pattern(snapshot_time, path, out_dir, title):
+    """Blocks coloured by σ1 with the broken joints drawn over them."""
+    figure, axes = plt.subplots(figsize=(7, 7))
+    collection = draw_pattern(axes, path)
+    figure.colorbar(collection, ax=axes, shrink=0.8, label="σ1 (MPa, tension positive)")
     axes.set_xlabel("x (m)")
     axes.set_ylabel("y (m)")
     axes.set_title(f"{title}: cracks over σ1 at t = {snapshot_time * MICROSECONDS:.0f} µs")
@@ -289,6 +303,9 @@ def main():
     import verify_dynamic_plots  # noqa: E402  (beside this script)
 
     verify_dynamic_plots.register(commands, save)
+    import study_source_plots  # noqa: E402  (beside this script)
+
+    study_source_plots.register(commands, sys.modules[__name__], save)
     args = parser.parse_args()
     args.draw(args)
 

@@ -32,7 +32,7 @@ namespace {
 /// The run directory's files besides the snapshots (vtk/snapshot_NNNNNN.vtu).
 const char* const kRunFiles[] = {"summary.json", "history.csv",  "cracks.csv", "crack_intervals.csv",
                                  "gauges.csv",   "loading.csv", "run.pvd",    "checkpoint.bin",
-                                 "scene.resolved.toml"};
+                                 "scene.resolved.toml", "fragments.csv"};
 
 /// NaN or infinity in a step's energies means NaN or infinity in the blocks' state.
 void check_finite(const StepReport& r) {
@@ -203,6 +203,8 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
     ddafrac::common::write_whole_text(o.out_dir / "cracks.csv", cracks_document(engine.cracks()));
     ddafrac::common::write_whole_text(o.out_dir / "crack_intervals.csv",
                                       crack_intervals_document(engine.cracks(), crack_width, engine.time()));
+    if (!engine.blocks().joints.empty())
+      ddafrac::common::write_whole_text(o.out_dir / "fragments.csv", fragments_document(engine));
     if (snapshot && o.vtk) {
       const std::string name = fmt::format("vtk/snapshot_{:06d}.vtu", log.snapshots.size());
       ddafrac::common::write_whole_text(o.out_dir / name, vtu_document(engine));

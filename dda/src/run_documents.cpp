@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ddafrac/dda/crack_metrics.hpp"
 #include "ddafrac/reference/analytic.hpp"
 
 namespace ddafrac::dda {
@@ -57,6 +58,80 @@ std::string crack_intervals_document(const std::vector<CrackEvent>& cracks, doub
   return s;
 }
 
+namespace {
+
+const std::string& body_name(const Engine& e, const BodyCracks& b) {
+  return e.scene().bodies[static_cast<std::size_t>(b.body)].name;
+}
+
+nlohmann::json optional_time(const std::optional<double>& t) { return t ? nlohmann::json(*t) : nlohmann::json(); }
+
+}  // namespace
+
+std::string fragments_document(const Engine& e) {
+  const auto& an = e.scene().analysis;
+  const double interval = an.output_interval > 0.0 ? an.output_interval : an.end_time;
+  std::vector<double> times;
+  for (long k = 0; static_cast<double>(k) * interval <= e.time() * (1.0 + kTimeSlack); ++k)
+    times.push_back(static_cast<double>(k) * interval);
+  if (times.back() < e.time() * (1.0 - kTimeSlack)) times.push_back(e.time());
+  // A crack at an output's step belongs to that output, whatever the last bits of its time.
+  std::vector<double> reach(times);
+  for (double& t : reach) t *= 1.0 + kTimeSlack;
+  const CrackHistory h = crack_history(e.blocks(), e.cracks(), reach);
+  std::string s =
+      "t,body,cracks_tensile,cracks_shear,crack_length_tensile,crack_length_shear,fragments,through_fragments,"
+      "largest_fragment_area,largest_fragment_fraction\n";
+  for (std::size_t k = 0; k < times.size(); ++k)
+    for (const BodyCracks& b : h.at_times[k])
+      s += fmt::format("{:.9g},{},{},{},{:.9g},{:.9g},{},{},{:.9g},{:.9g}\n", times[k], body_name(e, b), b.cracks_tensile,
+                       b.cracks_shear, b.length_tensile, b.length_shear, b.fragments, b.through_fragments,
+                       b.largest_fragment_area, b.largest_fragment_area / b.area);
+  return s;
+}
+
+nlohmann::json crack_metrics_json(const Engine& e) {
+  const CrackHistory h = crack_history(e.blocks(), e.cracks());
+  nlohmann::json j = {
+      {"definitions",
+       {{"fragment", "blocks of one body still joined by intact virtual joints; areas at t = 0"},
+        {"through_crack", "the body is in at least 2 fragments each of at least through_fragment_fraction of its area"},
+        {"through_fragment_fraction", kThroughCrackFragmentFraction}}},
+      {"units", {{"length", "m"}, {"area", "m^2"}, {"time", "s"}}},
+      {"bodies", nlohmann::json::array()}};
+  std::optional<double> first, first_through;
+  double length_tensile = 0.0, length_shear = 0.0;  // m
+  long fragments = 0;
+  const auto earliest = [](std::optional<double>& a, const std::optional<double>& b) {
+    if (b && (!a || *b < *a)) a = b;
+  };
+  for (std::size_t k = 0; k < h.now.size(); ++k) {
+    const BodyCracks& b = h.now[k];
+    j["bodies"].push_back({{"body", body_name(e, b)},
+                           {"area", b.area},
+                           {"cracks_tensile", b.cracks_tensile},
+                           {"cracks_shear", b.cracks_shear},
+                           {"crack_length_tensile", b.length_tensile},
+                           {"crack_length_shear", b.length_shear},
+                           {"fragments", b.fragments},
+                           {"through_fragments", b.through_fragments},
+                           {"largest_fragment_area", b.largest_fragment_area},
+                           {"largest_fragment_fraction", b.largest_fragment_area / b.area},
+                           {"first_crack_time", optional_time(h.first_crack[k])},
+                           {"first_through_crack_time", optional_time(h.first_through_crack[k])}});
+    length_tensile += b.length_tensile;
+    length_shear += b.length_shear;
+    fragments += b.fragments;
+    earliest(first, h.first_crack[k]);
+    earliest(first_through, h.first_through_crack[k]);
+  }
+  j["crack_length_tensile"] = length_tensile;
+  j["crack_length_shear"] = length_shear;
+  j["fragments"] = fragments;
+  j["first_crack_time"] = optional_time(first);
+  j["first_through_crack_time"] = optional_time(first_through);
+  return j;
+}
 
 std::string pvd_document(const std::vector<Snapshot>& snaps) {
   std::string s = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
@@ -142,6 +217,7 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
   const CrackCounts& cc = e.crack_counts();
   j["cracks"] = {{"total", cc.total}, {"tensile", cc.tensile}, {"shear", cc.shear},
                  {"interval", sc.output.crack_interval}};
+  j["crack_metrics"] = crack_metrics_json(e);
   j["loading"] = loading;
   j["exit"] = {{"status", r.exit_status}, {"reason", r.reason}, {"message", r.message}};
   return j;

@@ -31,6 +31,14 @@ struct Snapshot {
 
 std::string pvd_document(const std::vector<Snapshot>& snaps);
 
+/// fragments.csv: for each body with virtual joints, at t = 0, at every output interval and now:
+/// crack counts and lengths, fragments and the largest fragment (crack_metrics.hpp).
+std::string fragments_document(const Engine& e);
+
+/// summary.json's "crack_metrics": the same measures now, with the first and the first
+/// through-going crack's times and the definitions they rest on.
+nlohmann::json crack_metrics_json(const Engine& e);
+
 /// summary.json of the run so far; `loading` is its "loading" entry.
 nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResult& r, const nlohmann::json& loading);
 

@@ -1,0 +1,123 @@
+#include "study_source_report.hpp"
+
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+
+namespace ddafrac::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr double kMicrosecondsPerSecond = 1e6;
+constexpr double kMillimetresPerMetre = 1e3;
+constexpr double kKilonewtonsPerNewton = 1e-3;
+constexpr double kPercent = 100.0;
+
+/// The number at a path of keys, or nothing.
+std::optional<double> number_at(const json& j, std::initializer_list<const char*> keys) {
+  const json* node = &j;
+  for (const char* key : keys) {
+    if (!node->is_object() || !node->contains(key)) return std::nullopt;
+    node = &(*node)[key];
+  }
+  return node->is_number() ? std::optional<double>(node->get<double>()) : std::nullopt;
+}
+
+std::string cell(const std::optional<double>& v, const char* format, double scale = 1.0) {
+  return v ? fmt::format(fmt::runtime(format), *v * scale) : std::string("–");
+}
+
+/// The largest |force_y| of the prescribed bodies (N/m), if the run had any.
+std::optional<double> peak_force(const json& summary) {
+  std::optional<double> peak;
+  if (!summary.contains("loading") || !summary["loading"].contains("peak")) return peak;
+  for (const auto& [body, p] : summary["loading"]["peak"].items())
+    if (const auto f = number_at(p, {"peak_abs_force_y"})) peak = std::max(peak.value_or(0.0), *f);
+  return peak;
+}
+
+std::string table_row(const SourceCase& c) {
+  const json s = read_summary(c.run.run_dir);
+  if (s.is_discarded()) {
+    const std::string state = c.run.exit_code > 0 ? fmt::format("failed before its first output (exit status {}; "
+                                                                "see its run.log)", c.run.exit_code)
+                                                  : std::string("not run");
+    return fmt::format("| {} | {} | {} |{}\n", c.run.scene.name, c.series, state, std::string(14, '|'));
+  }
+  const json metrics = s.value("crack_metrics", json::object());
+  std::optional<double> length;
+  if (const auto t = number_at(metrics, {"crack_length_tensile"}))
+    length = *t + number_at(metrics, {"crack_length_shear"}).value_or(0.0);
+  std::optional<double> largest;
+  if (metrics.contains("bodies") && metrics["bodies"].size() == 1)
+    largest = number_at(metrics["bodies"][0], {"largest_fragment_fraction"});
+  std::optional<double> cuts;
+  for (const char* kind : {"cuts_displacement", "cuts_open_close", "cuts_solver"})
+    if (const auto n = number_at(s, {"dt", kind})) cuts = cuts.value_or(0.0) + *n;
+  const std::string reason = s.contains("exit") ? s["exit"].value("reason", "?") : "?";
+  return fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} / {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                     c.run.scene.name, c.series, cell(number_at(s, {"scene", "blocks"}), "{:.0f}"),
+                     cell(number_at(s, {"steps"}), "{:.0f}"), cell(cuts, "{:.0f}"),
+                     cell(number_at(s, {"wall_time", "total"}), "{:.1f}"),
+                     cell(number_at(s, {"simulated_time"}), "{:.0f}", kMicrosecondsPerSecond),
+                     cell(number_at(s, {"cracks", "tensile"}), "{:.0f}"), cell(number_at(s, {"cracks", "shear"}), "{:.0f}"),
+                     cell(length, "{:.1f}", kMillimetresPerMetre), cell(number_at(metrics, {"fragments"}), "{:.0f}"),
+                     cell(largest, "{:.1f}", kPercent),
+                     cell(number_at(metrics, {"first_crack_time"}), "{:.1f}", kMicrosecondsPerSecond),
+                     cell(number_at(metrics, {"first_through_crack_time"}), "{:.1f}", kMicrosecondsPerSecond),
+                     cell(peak_force(s), "{:.2f}", kKilonewtonsPerNewton),
+                     cell(number_at(s, {"energy", "largest_balance_error"}), "{:.2g}", kPercent),
+                     cell(number_at(s, {"missed_contacts", "count"}), "{:.0f}"), reason);
+}
+
+/// The crack-metric definitions as the runs wrote them (so the report cannot drift from the code).
+std::string definitions(const std::vector<SourceCase>& cases) {
+  for (const SourceCase& c : cases) {
+    const json s = read_summary(c.run.run_dir);
+    if (s.is_discarded() || !s.contains("crack_metrics")) continue;
+    const json& d = s["crack_metrics"]["definitions"];
+    return fmt::format("- fragment: {}\n- through-going crack: {} (through_fragment_fraction = {})\n",
+                       d.value("fragment", ""), d.value("through_crack", ""),
+                       d.value("through_fragment_fraction", 0.0));
+  }
+  return "- (no run has written its crack metrics yet)\n";
+}
+
+}  // namespace
+
+std::string study_markdown(const std::vector<SourceCase>& cases, const std::vector<std::string>& overrides,
+                           const std::vector<std::string>& figures) {
+  std::string md = "# The source study\n\n";
+  md += fmt::format("Written by `ddafrac study source`{}. Every number below is read from the case's "
+                    "`summary.json`; a case not run yet shows dashes.\n\n",
+                    overrides.empty() ? std::string(" at full size")
+                                      : fmt::format(" with `--set {}`", fmt::join(overrides, " --set ")));
+  md += "Crack metrics:\n" + definitions(cases) + "\n";
+  md += "| case | series | blocks | steps | dt cuts | wall (s) | t end (µs) | cracks tensile / shear | crack length (mm) "
+        "| fragments | largest fragment (%) | first crack (µs) | through crack (µs) | peak force (kN/m) "
+        "| largest energy-balance error (%) | missed contacts | exit |\n";
+  md += "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
+  for (const SourceCase& c : cases) md += table_row(c);
+  if (!figures.empty()) {
+    md += "\n## Figures\n\n";
+    for (const std::string& f : figures) md += fmt::format("![{}]({})\n\n", f, f);
+  }
+  return md;
+}
+
+std::string study_csv(const std::vector<SourceCase>& cases, const fs::path& out) {
+  std::string csv = "case,series,run_dir,exit_reason\n";
+  for (const SourceCase& c : cases) {
+    const json s = read_summary(c.run.run_dir);
+    const std::string reason = !s.is_discarded() && s.contains("exit") ? s["exit"].value("reason", "") : "";
+    csv += fmt::format("{},{},{},{}\n", c.run.scene.name, c.series, csv_field(fs::relative(c.run.run_dir, out).string()),
+                       reason);
+  }
+  return csv;
+}
+
+}  // namespace ddafrac::app

@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# `ddafrac study source` at a strongly reduced size (every case at the block count and end time
+# given below, its virtual joints weakened so that cracks form within that time), killed with its
+# runs after its first case finished, then resumed. Asserts what must hold whatever the mesh:
+#   - the resume keeps the finished first case (not run again: its files untouched);
+#   - --status lists it as done, the others as to do, and all as done at the end;
+#   - every case completed, study.md has a row for every case, study.csv lists them;
+#   - crack counts (total, tensile, shear) never decrease in any history.csv, nor the crack
+#     lengths and fragment counts in fragments.csv;
+#   - the largest |energy-balance error| of every run is within 1% (the run's own warning level);
+#   - the case that cracked most, run again on 2 threads, writes the same history.csv, cracks.csv
+#     and fragments.csv byte for byte (results do not depend on the thread count).
+# Usage: study_source_reduced.sh DDAFRAC WORK_DIR
+set -u
+exe=$1 work=$2
+rm -rf "$work" && mkdir -p "$work"
+fail() { echo "FAIL: $*"; exit 1; }
+study="$work/study"
+blocks=700         # the scenes with a slot mesh into no fewer than ~590 blocks; 600 misses the flattened disc's target
+end_time=6e-5      # s: 600 steps at dt_max = 1e-7 s
+interval=2e-5      # s between outputs (the Brazilian scenes' own 5e-5 would exceed the end time)
+strength=1e6       # Pa, tensile strength and cohesion of the virtual joints (the rock's: 7.86 and 8.29 MPa)
+set_args=(--set "mesh.blocks=$blocks" --set "analysis.end_time=$end_time" --set "analysis.output_interval=$interval"
+          --set "joints.virtual.tensile_strength=$strength" --set "joints.virtual.cohesion=$strength")
+first=flattened-2045  # the first case of the study
+
+setsid "$exe" study source --out "$study" --parallel 1 "${set_args[@]}" > "$work/killed.log" 2>&1 &
+group=$!
+for _ in $(seq 1 1800); do grep -q "\[1/.*$first finished" "$work/killed.log" && break; sleep 0.1; done
+grep -q "\[1/.*$first finished" "$work/killed.log" || { cat "$work/killed.log"; fail "the first case never finished"; }
+kill -KILL -- "-$group"
+wait "$group" 2>/dev/null
+kept_summary=$(md5sum < "$study/$first/summary.json")
+
+"$exe" study source --out "$study" --status > "$work/status_killed.log" 2>&1 || { cat "$work/status_killed.log"; fail "--status failed"; }
+cat "$work/status_killed.log"
+grep -q "^$first .* done$" "$work/status_killed.log" || fail "--status does not list $first as done"
+grep -q "impact-case15 .* to do" "$work/status_killed.log" || fail "--status does not list impact-case15 as to do"
+
+"$exe" study source --out "$study" --resume > "$work/resume.log" 2>&1
+code=$?
+cat "$work/resume.log"
+[ $code = 0 ] || fail "the resumed study failed (exit status $code)"
+grep -q "$first finished before (kept)" "$work/resume.log" || fail "$first was not kept"
+grep -q "started  $first" "$work/resume.log" && fail "$first was run again"
+[ "$(md5sum < "$study/$first/summary.json")" = "$kept_summary" ] || fail "$first's summary.json changed on resume"
+
+"$exe" study source --out "$study" --status > "$work/status_end.log" 2>&1 || fail "--status at the end failed"
+cases=$(tail -n +2 "$study/study.csv" | cut -d, -f1)
+cracked=0
+[ "$(echo "$cases" | wc -l)" = 22 ] || fail "study.csv does not list 22 cases"
+for c in $cases; do
+  grep -q "^| $c |" "$study/study.md" || fail "study.md has no row for $c"
+  grep -q "^$c .* done$" "$work/status_end.log" || fail "--status does not list $c as done at the end"
+  run="$study/$c"
+  grep -q '"reason": "completed"' "$run/summary.json" || fail "$c did not complete"
+  awk -F, -v c="$c" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+    { for (k in last) if ($col[k] + 0 < last[k]) { print "FAIL: " c ": " k " fell from " last[k] " to " $col[k]; exit 1 }
+      last["cracks_total"] = $col["cracks_total"]; last["cracks_tensile"] = $col["cracks_tensile"];
+      last["cracks_shear"] = $col["cracks_shear"] }' "$run/history.csv" || exit 1
+  awk -F, -v c="$c" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+    { for (k in last) if ($col[k] + 0 < last[k]) { print "FAIL: " c ": fragments.csv " k " fell"; exit 1 }
+      last["crack_length_tensile"] = $col["crack_length_tensile"]; last["crack_length_shear"] = $col["crack_length_shear"];
+      last["fragments"] = $col["fragments"] }' "$run/fragments.csv" || exit 1
+  error=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["energy"]["largest_balance_error"])' "$run/summary.json")
+  python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) <= 0.01 else 1)' "$error" ||
+    fail "$c: largest energy-balance error $error is above 1%"
+  [ "$(tail -n 1 "$run/history.csv" | cut -d, -f"$(head -n 1 "$run/history.csv" | tr , '\n' | grep -n '^cracks_total$' | cut -d: -f1)")" -gt 0 ] &&
+    cracked=$((cracked + 1))
+  echo "$c: $(python3 -c 'import json,sys; s=json.load(open(sys.argv[1])); m=s["crack_metrics"]; print(s["cracks"]["tensile"], "tensile,", s["cracks"]["shear"], "shear,", round(1e3*(m["crack_length_tensile"]+m["crack_length_shear"]),2), "mm,", m["fragments"], "fragments, energy error", s["energy"]["largest_balance_error"], ", wall", round(s["wall_time"]["total"],1), "s")' "$run/summary.json")"
+done
+[ $cracked -gt 0 ] || fail "no case cracked: the checks of crack counts over time saw nothing"
+echo "$cracked of 22 cases cracked"
+
+most=$(for c in $cases; do echo "$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["cracks"]["total"])' "$study/$c/summary.json") $c"; done | sort -n | tail -n 1 | cut -d' ' -f2)
+scene=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["scene"]["source"])' "$study/$most/summary.json")
+"$exe" run "$scene" --out "$work/two_threads" --threads 2 --keep-threads --no-figures "${set_args[@]}" > "$work/two_threads.log" 2>&1 ||
+  { cat "$work/two_threads.log"; fail "$most on 2 threads failed"; }
+for f in history.csv cracks.csv fragments.csv; do
+  cmp -s "$study/$most/$f" "$work/two_threads/$f" || fail "$most/$f differs between 1 and 2 threads"
+done
+echo "$most on 1 and 2 threads: history.csv, cracks.csv, fragments.csv identical"
+echo "PASS"
