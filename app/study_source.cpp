@@ -216,7 +216,7 @@ void register_study_source(CLI::App& study) {
   auto* status = command->add_flag("--status", args->status,
                                    "list the cases as done / running / failed / to do with their run times; run nothing");
   status->excludes(resume);
-  command->add_option("--set", args->overrides, "override a value of every case, e.g. --set mesh.blocks=600")
+  command->add_option("--set", args->overrides, "override a value of every case, e.g. --set mesh.blocks=700 (a reduced study: every scene meshes at 700)")
       ->type_name("KEY=VALUE");
   command->add_option("--parallel", args->parallel, "runs at once (default: the cores)")
       ->check(whole_number(1, kMaxParallelRuns))
