@@ -289,24 +289,31 @@ void vertex_data(const BlockSystem& s, DetectionWorkspace& w) {
 
 void ContactsByVertex::build(const std::vector<Contact>& list, std::size_t vertex_count) {
   const auto nc = static_cast<std::int64_t>(list.size());
-  std::vector<Index> vertex(list.size());  // read once in parallel; the serial passes walk this
+  // The fields an entry needs, read from the records once, in list order and in parallel; the
+  // serial passes below then walk these small arrays.
+  std::vector<Index> vertex(list.size()), pair_low(list.size()), pair_high(list.size()), corner_edge(list.size());
 #pragma omp parallel for schedule(static)
-  for (std::int64_t k = 0; k < nc; ++k) vertex[k] = list[k].vertex;
+  for (std::int64_t k = 0; k < nc; ++k) {
+    const Contact& c = list[k];
+    vertex[k] = c.vertex;
+    pair_low[k] = c.pair_low();
+    pair_high[k] = c.pair_high();
+    corner_edge[k] = c.vertex_vertex && c.state != ContactState::Open ? c.edge0 : -1;
+  }
   offsets.assign(vertex_count + 1, 0);
   for (const Index v : vertex) ++offsets[static_cast<std::size_t>(v) + 1];
   for (std::size_t v = 0; v < vertex_count; ++v) offsets[v + 1] += offsets[v];
   contacts.resize(list.size());
-  std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
-  for (std::int64_t k = 0; k < nc; ++k) contacts[static_cast<std::size_t>(fill[static_cast<std::size_t>(vertex[k])]++)] = static_cast<Index>(k);
   low.resize(list.size());
   high.resize(list.size());
   closed_corner_edge.resize(list.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t m = 0; m < nc; ++m) {
-    const Contact& c = list[static_cast<std::size_t>(contacts[m])];
-    low[m] = c.pair_low();
-    high[m] = c.pair_high();
-    closed_corner_edge[m] = c.vertex_vertex && c.state != ContactState::Open ? c.edge0 : -1;
+  std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
+  for (std::int64_t k = 0; k < nc; ++k) {
+    const auto m = static_cast<std::size_t>(fill[static_cast<std::size_t>(vertex[k])]++);
+    contacts[m] = static_cast<Index>(k);
+    low[m] = pair_low[k];
+    high[m] = pair_high[k];
+    closed_corner_edge[m] = corner_edge[k];
   }
 }
 

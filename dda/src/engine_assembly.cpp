@@ -103,7 +103,8 @@ void Engine::assemble(bool whole) {
     rhs_[i] = f;
   }
   // Off-diagonal blocks: each pair owns its block and sums its own contacts in order.
-#pragma omp parallel for schedule(static)
+  bool nonzero_pairs_changed = whole;
+#pragma omp parallel for schedule(static) reduction(|| : nonzero_pairs_changed)
   for (std::int64_t p = 0; p < np; ++p) {
     const ContactPair& pr = set_.pairs[p];
     if (!whole && std::none_of(coefficient_changed_.data() + pr.first, coefficient_changed_.data() + pr.last,
@@ -124,10 +125,11 @@ void Engine::assemble(bool whole) {
       if (q.kn_eff != 0.0) k.noalias() += q.kn_eff * na * nb.transpose();
       if (q.ks_eff != 0.0) k.noalias() += q.ks_eff * sa * sb.transpose();
     }
+    if (matrix_.off_nonzero[p] != (nonzero ? 1 : 0)) nonzero_pairs_changed = true;
     matrix_.off_nonzero[p] = nonzero ? 1 : 0;
     if (nonzero) matrix_.off[p] = k;
   }
-  index_nonzero_pairs(matrix_, set_);
+  if (nonzero_pairs_changed) index_nonzero_pairs(matrix_, set_);
 }
 
 bool Engine::judge(int& changed_first) {
