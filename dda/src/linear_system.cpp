@@ -14,29 +14,27 @@ namespace ddafrac::dda {
 const char* to_string(SolverKind s) { return s == SolverKind::Pcg ? "pcg-block-jacobi" : "eigen-simplicial-ldlt"; }
 
 void index_nonzero_pairs(BlockMatrix& k, const ContactSet& t) {
-  const auto n = static_cast<std::int64_t>(k.diag.size());
-  k.row_offsets.resize(static_cast<std::size_t>(n) + 1);
-  k.row_offsets[0] = 0;
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
-    Index count = 0;
-    for (Index m = t.block_pair_offsets[i]; m < t.block_pair_offsets[i + 1]; ++m) count += k.off_nonzero[t.block_pairs[m]];
-    k.row_offsets[i + 1] = count;
-  }
-  for (std::int64_t i = 0; i < n; ++i) k.row_offsets[i + 1] += k.row_offsets[i];
+  // One serial pass over the pairs in list order, scattering each nonzero pair into the rows of
+  // its two blocks: each row lists its pairs ascending, as ContactSet::block_pairs does.
+  const std::size_t n = k.diag.size();
+  k.row_offsets.assign(n + 1, 0);
+  for (std::size_t p = 0; p < t.pairs.size(); ++p)
+    if (k.off_nonzero[p]) {
+      ++k.row_offsets[static_cast<std::size_t>(t.pairs[p].a) + 1];
+      ++k.row_offsets[static_cast<std::size_t>(t.pairs[p].b) + 1];
+    }
+  for (std::size_t i = 0; i < n; ++i) k.row_offsets[i + 1] += k.row_offsets[i];
   k.row_pairs.resize(static_cast<std::size_t>(k.row_offsets[n]));
   k.row_others.resize(static_cast<std::size_t>(k.row_offsets[n]));
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
-    Index at = k.row_offsets[i];
-    for (Index m = t.block_pair_offsets[i]; m < t.block_pair_offsets[i + 1]; ++m) {
-      const Index p = t.block_pairs[m];
-      if (!k.off_nonzero[p]) continue;
-      const ContactPair& pr = t.pairs[p];
-      k.row_pairs[at] = p;
-      k.row_others[at] = pr.a == i ? pr.b : pr.a;
-      ++at;
-    }
+  std::vector<Index> fill(k.row_offsets.begin(), k.row_offsets.end() - 1);
+  for (std::size_t p = 0; p < t.pairs.size(); ++p) {
+    if (!k.off_nonzero[p]) continue;
+    const ContactPair& pr = t.pairs[p];
+    const auto at_a = static_cast<std::size_t>(fill[static_cast<std::size_t>(pr.a)]++);
+    const auto at_b = static_cast<std::size_t>(fill[static_cast<std::size_t>(pr.b)]++);
+    k.row_pairs[at_a] = k.row_pairs[at_b] = static_cast<Index>(p);
+    k.row_others[at_a] = pr.b;
+    k.row_others[at_b] = pr.a;
   }
 }
 
@@ -64,7 +62,7 @@ double dot(const BlockVector& a, const BlockVector& b) {
 
 namespace {
 
-SolveReport solve_pcg(const BlockMatrix& k, const ContactSet& t, const BlockVector& b, BlockVector& x,
+SolveReport solve_pcg(const BlockMatrix& k, const BlockVector& b, BlockVector& x,
                       const SolverSettings& cfg, SolverWorkspace& w) {
   const auto n = static_cast<std::int64_t>(b.size());
   SolveReport rep;
@@ -158,7 +156,7 @@ SolveReport solve(const BlockMatrix& k, const ContactSet& t, const BlockVector& 
                   const SolverSettings& settings, SolverWorkspace& work) {
   x.resize(b.size(), Vec6::Zero());
   if (settings.kind == SolverKind::Direct) return solve_direct(k, t, b, x);
-  return solve_pcg(k, t, b, x, settings, work);
+  return solve_pcg(k, b, x, settings, work);
 }
 
 }  // namespace ddafrac::dda
