@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -21,6 +22,7 @@
 
 #include "ddafrac/common/angles.hpp"
 #include "ddafrac/coupling/dda_twin.hpp"
+#include "ddafrac/dda/drive.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "thread_scope.hpp"
 #include "ddafrac/common/stopwatch.hpp"
@@ -236,8 +238,11 @@ void step_to_rest(dda::Engine& engine, double pressure, int max_steps, bool quie
   std::vector<std::array<double, 2>> anchor_start;
   for (const auto& a : b.anchors) anchor_start.push_back({a.x, a.y});
   std::vector<dda::Vec3> previous = b.stress;
-  for (int k = 0; k < max_steps; ++k) {
-    const auto report = engine.step();
+  int taken = 0;  // steps
+  dda::DriveHooks hooks;
+  hooks.before_step = [&] { return taken < max_steps ? dda::Next::Continue : dda::Next::Stop; };
+  hooks.after_step = [&](const dda::StepReport& report) {
+    ++taken;
     out.anchor_rigid = follow_deformation(engine.blocks().anchors, anchor_start);
     out.steps = report.step;
     out.dt_cuts += report.cuts;
@@ -253,8 +258,9 @@ void step_to_rest(dda::Engine& engine, double pressure, int max_steps, bool quie
     if (!quiet)
       fmt::print("verify: DDA step {}: largest step displacement / total {:.2e}, largest stress change / pressure {:.2e}\n",
                  report.step, out.last_step_ratio, out.last_stress_change);
-    if (k >= 1 && out.last_step_ratio < kStaticTolerance) break;
-  }
+    return taken >= 2 && out.last_step_ratio < kStaticTolerance ? dda::Next::Stop : dda::Next::Continue;
+  };
+  dda::drive(engine, std::numeric_limits<double>::infinity(), hooks);  // no end time: until at rest
 }
 
 }  // namespace
