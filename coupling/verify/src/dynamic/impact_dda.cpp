@@ -15,8 +15,8 @@
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "dynamic/impact_scene.hpp"
-#include "thread_scope.hpp"
 #include "ddafrac/common/stopwatch.hpp"
+#include "ddafrac/common/thread_scope.hpp"
 
 namespace ddafrac::coupling {
 
@@ -89,7 +89,7 @@ GaugeHistories run_impact_dda(const scene::Scene& scene, const ImpactSettings& s
   const meshes::Mesh mesh = disc_only(meshes::generate_dda_mesh(scene.geometry, scene.mesh), disc_body(scene).name);
   out.mesh_wall = seconds_since(mesh_start);
 
-  const ThreadScope threads(settings.threads);
+  const common::ThreadScope threads(settings.threads);
   const auto start = Clock::now();
   dda::EngineOptions options;
   options.anchors = patch_anchors(mesh);

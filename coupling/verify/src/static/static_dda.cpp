@@ -24,8 +24,8 @@
 #include "ddafrac/coupling/dda_twin.hpp"
 #include "ddafrac/dda/drive.hpp"
 #include "ddafrac/meshes/generate.hpp"
-#include "thread_scope.hpp"
 #include "ddafrac/common/stopwatch.hpp"
+#include "ddafrac/common/thread_scope.hpp"
 
 namespace ddafrac::coupling {
 
@@ -266,7 +266,7 @@ void step_to_rest(dda::Engine& engine, double pressure, int max_steps, bool quie
 }  // namespace
 
 StaticDdaRun run_static_dda(const scene::Scene& scene, const StaticSetup& st, const VerifyOptions& o) {
-  const ThreadScope threads(o.threads);
+  const common::ThreadScope threads(o.threads);
   StaticDdaRun out;
   const auto start = Clock::now();
   const DdaTwin twin = static_twin(scene, o.stiffness_ratio);
