@@ -21,6 +21,7 @@
 #include <unordered_map>
 
 #include "ddafrac/common/angles.hpp"
+#include "ddafrac/common/polygon.hpp"
 #include "ddafrac/coupling/dda_twin.hpp"
 #include "ddafrac/dda/drive.hpp"
 #include "ddafrac/meshes/generate.hpp"
@@ -50,28 +51,17 @@ DdaTwin static_twin(const scene::Scene& scene, double kn_over_young) {
   return twin;
 }
 
-double cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
-
-bool inside_cell(const meshes::Mesh& m, std::size_t c, double x, double y) {
-  const auto n = m.cell_size(c);
-  const auto* nodes = m.cell_begin(c);
-  int sign = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const auto& p = m.nodes[nodes[k]];
-    const auto& q = m.nodes[nodes[(k + 1) % n]];
-    const double c2 = cross(q.x - p.x, q.y - p.y, x - p.x, y - p.y);
-    const int s = c2 > 0.0 ? 1 : (c2 < 0.0 ? -1 : 0);
-    if (s != 0) {
-      if (sign != 0 && s != sign) return false;
-      sign = s;
-    }
-  }
-  return true;
-}
-
 std::optional<std::size_t> cell_containing(const meshes::Mesh& m, double x, double y) {
-  for (std::size_t c = 0; c < m.cell_count(); ++c)
-    if (inside_cell(m, c, x, y)) return c;
+  std::vector<double> cx, cy;
+  for (std::size_t c = 0; c < m.cell_count(); ++c) {
+    cx.clear();
+    cy.clear();
+    for (const meshes::Index* n = m.cell_begin(c); n != m.cell_begin(c) + m.cell_size(c); ++n) {
+      cx.push_back(m.nodes[*n].x);
+      cy.push_back(m.nodes[*n].y);
+    }
+    if (common::inside_polygon(cx.data(), cy.data(), cx.size(), x, y)) return c;
+  }
   return std::nullopt;
 }
 
