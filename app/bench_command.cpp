@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -15,6 +16,7 @@
 #include "option_checks.hpp"
 #include "scene_source.hpp"
 #include "ddafrac/common/whole_file.hpp"
+#include "ddafrac/dda/drive.hpp"
 #include "ddafrac/dda/run.hpp"
 #include "ddafrac/dda/synthetic.hpp"
 #include "machine_ceiling.hpp"
@@ -58,14 +60,22 @@ struct BenchCase {
   int target = 0;
 };
 
+/// `count` steps, each as long as the engine allows (no end time).
+void take_steps(dda::Engine& e, int count) {
+  int taken = 0;
+  dda::DriveHooks hooks;
+  hooks.before_step = [&] { return taken++ < count ? dda::Next::Continue : dda::Next::Stop; };
+  dda::drive(e, std::numeric_limits<double>::infinity(), hooks);
+}
+
 BenchRow bench_one(const BenchCase& bc, int threads, const BenchArguments& a) {
   omp_set_num_threads(threads);
   dda::EngineOptions o;
   o.solver.kind = wants_direct_solver(a.solver, bc.scene) ? dda::SolverKind::Direct : dda::SolverKind::Pcg;
   dda::Engine e(bc.scene, bc.mesh, o);
-  for (int k = 0; k < a.warmup; ++k) e.step();
+  take_steps(e, a.warmup);
   const dda::Statistics before = e.statistics();
-  for (int k = 0; k < a.steps; ++k) e.step();
+  take_steps(e, a.steps);
   const dda::Statistics& after = e.statistics();
   BenchRow r;
   r.target = bc.target;

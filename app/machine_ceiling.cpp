@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 #include "ddafrac/common/stopwatch.hpp"
+#include "ddafrac/common/thread_scope.hpp"
 
 namespace ddafrac::app {
 
@@ -49,7 +50,7 @@ double memory_kernel_seconds(int threads, std::vector<double>& a, const std::vec
 }  // namespace
 
 MachineCeiling measure_machine_ceiling(int threads) {
-  const int previous = omp_get_max_threads();
+  const common::ThreadScope caller_threads;
   MachineCeiling m;
   m.threads = threads;
   double sink = 0.0;
@@ -61,7 +62,6 @@ MachineCeiling measure_machine_ceiling(int threads) {
   const double memory_one = memory_kernel_seconds(1, a, b, c);
   const double memory_many = memory_kernel_seconds(threads, a, b, c);
   m.memory_speedup = memory_one / memory_many;
-  omp_set_num_threads(previous);
   if (sink == 0.0 || a[0] == 0.0) m.compute_speedup = 0.0;  // keeps the kernels from being optimised away
   return m;
 }

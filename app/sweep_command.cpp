@@ -20,6 +20,7 @@
 #include "commands.hpp"
 #include "option_checks.hpp"
 #include "ddafrac/common/whole_file.hpp"
+#include "ddafrac/dda/drive.hpp"
 #include "ddafrac/scene/parse.hpp"
 #include "ddafrac/scene/sweep.hpp"
 #include "figures.hpp"
@@ -67,14 +68,13 @@ Cracks cracks_at(const fs::path& history, double t) {
   }
   for (const char* key : {"t", "cracks_total", "cracks_tensile", "cracks_shear"})
     if (!column.count(key)) return std::nullopt;
-  constexpr double kTimeSlack = 1e-9;  // relative
   Cracks found;
   while (std::getline(in, line)) {
     std::vector<std::string> cells;
     std::stringstream row(line);
     for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
     if (cells.size() < column.size()) break;
-    if (std::stod(cells[column["t"]]) > t * (1 + kTimeSlack)) break;
+    if (std::stod(cells[column["t"]]) > t * (1 + dda::kTimeSlack)) break;
     found = {std::stod(cells[column["cracks_total"]]), std::stod(cells[column["cracks_tensile"]]),
              std::stod(cells[column["cracks_shear"]])};
   }

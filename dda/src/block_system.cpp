@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "ddafrac/common/polygon.hpp"
+
 namespace ddafrac::dda {
 
 const char* to_string(CrackType t) {
@@ -228,15 +230,9 @@ BlockSystem build_block_system(const scene::Scene& scene, const meshes::Mesh& me
 
 Index find_block(const BlockSystem& blocks, double x, double y) {
   for (std::size_t b = 0; b < blocks.block_count(); ++b) {
-    const Index v0 = blocks.begin(b);
-    const Index nv = blocks.end(b) - v0;
-    bool inside = false;
-    for (Index k = 0, m = nv - 1; k < nv; m = k++) {
-      const double xk = blocks.vx[static_cast<std::size_t>(v0 + k)], yk = blocks.vy[static_cast<std::size_t>(v0 + k)];
-      const double xm = blocks.vx[static_cast<std::size_t>(v0 + m)], ym = blocks.vy[static_cast<std::size_t>(v0 + m)];
-      if ((yk > y) != (ym > y) && x < (xm - xk) * (y - yk) / (ym - yk) + xk) inside = !inside;
-    }
-    if (inside) return static_cast<Index>(b);
+    const auto v0 = static_cast<std::size_t>(blocks.begin(b));
+    const auto n = static_cast<std::size_t>(blocks.end(b) - blocks.begin(b));
+    if (common::inside_polygon(&blocks.vx[v0], &blocks.vy[v0], n, x, y)) return static_cast<Index>(b);
   }
   return -1;
 }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <tuple>
 
+#include "ddafrac/common/polygon.hpp"
+
 namespace ddafrac::dda {
 
 const char* to_string(ContactState s) {
@@ -98,15 +100,10 @@ double gap(const View& w, Index v, Index e0) {
   return (w.x(v) - w.x(e0)) * w.w.enx[k] + (w.y(v) - w.y(e0)) * w.w.eny[k];
 }
 
-/// Crossing-number test: is (px, py) inside the polygon of block q (convex or concave)?
+/// Is (px, py) inside the polygon of block q (convex or concave)?
 bool inside_block(const View& w, Index q, double px, double py) {
-  bool in = false;
-  const Index v0 = w.s.begin(q), v1 = w.s.end(q);
-  for (Index i = v0, j = v1 - 1; i < v1; j = i++) {
-    const double xi = w.x(i), yi = w.y(i), xj = w.x(j), yj = w.y(j);
-    if ((yi > py) != (yj > py) && px < (xj - xi) * (py - yi) / (yj - yi) + xi) in = !in;
-  }
-  return in;
+  const auto v0 = static_cast<std::size_t>(w.s.begin(q));
+  return common::inside_polygon(&w.s.vx[v0], &w.s.vy[v0], static_cast<std::size_t>(w.s.end(q) - w.s.begin(q)), px, py);
 }
 
 /// The copies (v of a, u of b) of the one mesh node shared by two blocks of one body that share

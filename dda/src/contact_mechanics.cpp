@@ -144,12 +144,12 @@ ContactState judge_frictional(Contact& c, double d, double s, double tol, double
   return ContactState::Locked;
 }
 
-/// An intact cohesive joint holds (stays locked) while its tension and shear stay within
-/// σt·l_c and c·l_c + fn·tanφ.
+/// An intact cohesive joint holds (stays locked) while its tension and shear stay within its
+/// strength over l_c (joint_strength).
 bool cohesion_holds(const Contact& c, double fn, double s) {
-  const double tension_limit = c.tensile_strength * c.cohesive_length;
-  const double shear_limit = c.cohesion * c.cohesive_length + c.tan_phi * std::max(fn, 0.0);
-  return -fn <= tension_limit && std::abs(c.ks * s) <= shear_limit;
+  const JointStrength limit =
+      joint_strength(c.tensile_strength, c.cohesion, c.tan_phi, c.cohesive_length, std::max(fn, 0.0));
+  return -fn <= limit.tension && std::abs(c.ks * s) <= limit.shear;
 }
 
 }  // namespace

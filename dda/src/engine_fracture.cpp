@@ -17,10 +17,12 @@ FailureRatios failure_ratios(const JointForce& f, double length, const scene::Jo
     if (load <= 0.0) return 0.0;
     return strength > 0.0 ? load / strength : std::numeric_limits<double>::infinity();
   };
-  FailureRatios r;
-  r.r1 = ratio(f.normal, js.tensile_strength * length);
   const double compression = std::max(0.0, -f.normal);
-  r.r2 = ratio(std::abs(f.shear), js.cohesion * length + compression * std::tan(js.friction_angle));
+  const JointStrength strength =
+      joint_strength(js.tensile_strength, js.cohesion, std::tan(js.friction_angle), length, compression);
+  FailureRatios r;
+  r.r1 = ratio(f.normal, strength.tension);
+  r.r2 = ratio(std::abs(f.shear), strength.shear);
   return r;
 }
 

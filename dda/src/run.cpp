@@ -14,6 +14,7 @@
 
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/dda/checkpoint.hpp"
+#include "ddafrac/dda/drive.hpp"
 #include "ddafrac/reference/analytic.hpp"
 #include "run_documents.hpp"
 
@@ -223,49 +224,55 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
   }
   double last_progress = -1e300;
   StepReport last;
-  try {
-    for (;;) {
-      if (const int signal = o.stop ? o.stop->load() : 0) {
-        r.exit_status = kSignalExitBase + signal;
-        r.reason = "interrupted";
-        r.message = fmt::format("interrupted by signal {} at step {}, t = {:.9g} s", signal, st.steps, engine.time());
-        break;
-      }
-      if (o.max_steps > 0 && st.steps >= o.max_steps) {
-        r.reason = "max_steps";
-        break;
-      }
-      if (engine.time() >= end * (1.0 - kTimeSlack)) {
-        r.reason = "completed";
-        break;
-      }
-      const double t_out = std::min(end, static_cast<double>(log.next_output) * interval);
-      if (o.between_steps) {
-        const int threads = o.between_steps();
-        if (log.threads_fewest > 0 && threads != current_threads) ++log.thread_count_changes;
-        current_threads = threads;
-        log.threads_fewest = log.threads_fewest > 0 ? std::min(log.threads_fewest, threads) : threads;
-      }
-      const StepReport rep = engine.step(t_out - engine.time());
-      check_finite(rep);
-      last = rep;
-      sample_loading();
-      if (rep.step % std::max(1, o.history_every) == 0) log.history += history_row(rep);
-      log.snapshot_at_end = true;
-      if (engine.time() >= t_out - kTimeSlack * interval) {
-        ++log.next_output;
-        write_outputs(true);
-        log.snapshot_at_end = false;
-      }
-      if (o.checkpoint_every > 0.0 && omp_get_wtime() - last_checkpoint >= o.checkpoint_every) checkpoint();
-      if (o.progress) {
-        const double now = omp_get_wtime();
-        if (now - last_progress >= o.progress_every) {
-          last_progress = now;
-          o.progress({engine.time(), end, rep.step, rep.dt, rep.open_close, rep.cg_iterations, log.wall + now - t0});
-        }
+  // Every output interval ends with a step that lands on it (the last one on the end time).
+  auto output_time = [&] { return std::min(end, static_cast<double>(log.next_output) * interval); };
+  DriveHooks hooks;
+  hooks.interrupt = [&] {
+    if (const int signal = o.stop ? o.stop->load() : 0) {
+      r.exit_status = kSignalExitBase + signal;
+      r.reason = "interrupted";
+      r.message = fmt::format("interrupted by signal {} at step {}, t = {:.9g} s", signal, st.steps, engine.time());
+      return Next::Stop;
+    }
+    if (o.max_steps > 0 && st.steps >= o.max_steps) {
+      r.reason = "max_steps";
+      return Next::Stop;
+    }
+    return Next::Continue;
+  };
+  hooks.before_step = [&] {
+    if (o.between_steps) {
+      const int threads = o.between_steps();
+      if (log.threads_fewest > 0 && threads != current_threads) ++log.thread_count_changes;
+      current_threads = threads;
+      log.threads_fewest = log.threads_fewest > 0 ? std::min(log.threads_fewest, threads) : threads;
+    }
+    return Next::Continue;
+  };
+  hooks.land_at = output_time;
+  hooks.after_step = [&](const StepReport& rep) {
+    check_finite(rep);
+    last = rep;
+    sample_loading();
+    if (rep.step % std::max(1, o.history_every) == 0) log.history += history_row(rep);
+    log.snapshot_at_end = true;
+    if (engine.time() >= output_time() - kTimeSlack * interval) {
+      ++log.next_output;
+      write_outputs(true);
+      log.snapshot_at_end = false;
+    }
+    if (o.checkpoint_every > 0.0 && omp_get_wtime() - last_checkpoint >= o.checkpoint_every) checkpoint();
+    if (o.progress) {
+      const double now = omp_get_wtime();
+      if (now - last_progress >= o.progress_every) {
+        last_progress = now;
+        o.progress({engine.time(), end, rep.step, rep.dt, rep.open_close, rep.cg_iterations, log.wall + now - t0});
       }
     }
+    return Next::Continue;
+  };
+  try {
+    if (drive(engine, end, hooks) == DriveEnd::Reached) r.reason = "completed";
   } catch (const NumericalTrouble& ex) {
     r.exit_status = kRunNumericalTrouble;
     r.reason = "numerical_trouble";

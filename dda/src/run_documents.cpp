@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ddafrac/common/pvd.hpp"
 #include "ddafrac/dda/crack_metrics.hpp"
 #include "ddafrac/reference/analytic.hpp"
 
@@ -134,11 +135,9 @@ nlohmann::json crack_metrics_json(const Engine& e) {
 }
 
 std::string pvd_document(const std::vector<Snapshot>& snaps) {
-  std::string s = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
-  for (const auto& p : snaps)
-    s += fmt::format("    <DataSet timestep=\"{:.17g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", p.time, p.file);
-  s += "  </Collection>\n</VTKFile>\n";
-  return s;
+  std::vector<common::PvdEntry> entries;
+  for (const Snapshot& s : snaps) entries.push_back({s.time, s.file});
+  return common::pvd_document(entries);
 }
 
 nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResult& r,

@@ -8,12 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "ddafrac/dda/drive.hpp"  // kTimeSlack
 #include "ddafrac/dda/run.hpp"
 
 namespace ddafrac::dda {
-
-/// Relative slack when comparing simulated times with output times.
-inline constexpr double kTimeSlack = 1e-9;
 
 std::string history_header();
 /// One history.csv row of an accepted step.

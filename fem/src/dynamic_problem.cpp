@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "ddafrac/common/pvd.hpp"
 #include "ddafrac/common/whole_file.hpp"
 
 #include "direct_solver.hpp"
@@ -37,17 +38,9 @@ class PhaseTimer {
 };
 
 std::string pvd_document(const std::vector<SnapshotRecord>& snapshots) {
-  std::string s =
-      "<?xml version=\"1.0\"?>\n"
-      "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-      "  <Collection>\n";
-  char line[256];
-  for (const auto& snap : snapshots) {
-    std::snprintf(line, sizeof line, "    <DataSet timestep=\"%.17g\" part=\"0\" file=\"%s\"/>\n",
-                  snap.t, snap.file.c_str());
-    s += line;
-  }
-  return s + "  </Collection>\n</VTKFile>\n";
+  std::vector<common::PvdEntry> entries;
+  for (const SnapshotRecord& snap : snapshots) entries.push_back({snap.t, snap.file});
+  return common::pvd_document(entries);
 }
 
 double energy_of(const detail::Matrix& matrix, const detail::Vec& x, detail::Vec& scratch) {

@@ -1,7 +1,6 @@
 #include "gmsh_session.hpp"
 
 #include <gmsh.h>
-#include <omp.h>
 
 #include <exception>
 #include <vector>
@@ -14,7 +13,7 @@ namespace {
 constexpr double kRandomSeed = 20260;  // fixed seed: the same input gives the same mesh
 }
 
-GmshSession::GmshSession() : caller_omp_threads_(omp_get_max_threads()) {
+GmshSession::GmshSession() {
   gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
   try {
     gmsh::option::setNumber("General.Terminal", 0);
@@ -24,7 +23,6 @@ GmshSession::GmshSession() : caller_omp_threads_(omp_get_max_threads()) {
     gmsh::logger::start();
   } catch (...) {
     gmsh::finalize();
-    omp_set_num_threads(caller_omp_threads_);
     rethrow_gmsh_error("initialising gmsh");
   }
 }
@@ -35,7 +33,6 @@ GmshSession::~GmshSession() {
     gmsh::finalize();
   } catch (...) {  // a destructor must not throw; gmsh's state is gone either way
   }
-  omp_set_num_threads(caller_omp_threads_);
 }
 
 std::string gmsh_last_error() {

@@ -6,6 +6,8 @@
 #include <string>
 #include <utility>
 
+#include "ddafrac/common/thread_scope.hpp"
+
 namespace ddafrac::meshes::detail {
 
 class GmshSession {
@@ -17,8 +19,9 @@ class GmshSession {
 
  private:
   // gmsh sets the process-wide OpenMP thread count from General.NumThreads; the caller's
-  // count is restored on the way out, or a run after meshing would silently use one thread.
-  int caller_omp_threads_;
+  // count is restored on the way out (after gmsh is finalised, and when the constructor
+  // throws), or a run after meshing would silently use one thread.
+  common::ThreadScope caller_threads_;
 };
 
 /// The last error gmsh logged in this session (empty if none).

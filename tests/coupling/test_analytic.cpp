@@ -1,4 +1,4 @@
-#define BOOST_TEST_MODULE analytic
+#define BOOST_TEST_MODULE coupling_analytic
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

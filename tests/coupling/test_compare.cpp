@@ -1,5 +1,5 @@
 // Error measures against signals whose answers are known in closed form.
-#define BOOST_TEST_MODULE test_compare
+#define BOOST_TEST_MODULE coupling_compare
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

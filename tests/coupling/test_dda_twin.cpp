@@ -1,6 +1,6 @@
 // The DDA twin of the continuum (coupling/verify, dda_twin.hpp): the one place that sets a
 // twin's joint stiffnesses, for the static and the dynamic comparison alike.
-#define BOOST_TEST_MODULE dda_twin
+#define BOOST_TEST_MODULE coupling_dda_twin
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

@@ -3,7 +3,7 @@
 // stated bound; the deliberately impossible case ends with exit status 3 and a message naming the
 // step, the time and the worst block. Cases are taken from stability_cases(), so the test runs
 // exactly what the study's table reports.
-#define BOOST_TEST_MODULE test_stability
+#define BOOST_TEST_MODULE coupling_stability
 #include <boost/test/unit_test.hpp>
 
 #include <omp.h>

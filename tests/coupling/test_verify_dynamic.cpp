@@ -1,7 +1,7 @@
 // Issue 6, test 2: the contact-free impact response of the DDA twin (bonded, unbreakable
 // virtual joints; the impact patch held from t = 0) against the deal.II FEM of the same disc,
 // on scenes/verify/impact_elastic.toml (about 1000 blocks, 60 µs).
-#define BOOST_TEST_MODULE verify_dynamic
+#define BOOST_TEST_MODULE coupling_verify_dynamic
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

@@ -2,7 +2,7 @@
 // the DDA twin (joints bonded and unbreakable, kn = 10 E, the study's lowest ratio, static
 // mode) against the FEM (P2, one refinement) and the Hondros series, on
 // scenes/small/hondros_disc.toml at about 1000 and 2000 blocks.
-#define BOOST_TEST_MODULE verify_static
+#define BOOST_TEST_MODULE coupling_verify_static
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

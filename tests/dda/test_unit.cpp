@@ -7,6 +7,7 @@
 #include <set>
 
 #include "ddafrac/dda/contact_mechanics.hpp"
+#include "ddafrac/dda/drive.hpp"
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/dda/geometry.hpp"
 #include "ddafrac/dda/linear_system.hpp"
@@ -228,6 +229,43 @@ BOOST_AUTO_TEST_CASE(a_restored_state_continues_bit_for_bit) {
   // Engines built from one scene and mesh start from the same bytes: what a checkpoint's
   // fingerprint of the state at t = 0 relies on.
   BOOST_TEST(Engine(s, m).carried_state() == Engine(s, m).carried_state());
+}
+
+// The time loop lands on every landing time and on the end time: 2.5 and 5 steps of dt_max and
+// an end at 6.5 take 3 + 3 + 2 steps, the last ones shortened; a hook's Stop ends it early, and
+// an interrupt wins even at the end time.
+BOOST_AUTO_TEST_CASE(the_driver_lands_on_every_landing_time_and_on_the_end_time) {
+  const meshes::Mesh m = make_ring_disc_mesh(0.1, 200);
+  const scene::Scene s = make_impact_scene(3.5, 1e-3);
+  const double dt = s.analysis.dt_max;
+  Engine engine(s, m);
+  std::vector<double> times;
+  DriveHooks hooks;
+  hooks.land_at = [&] {
+    for (const double t : {2.5 * dt, 5.0 * dt})
+      if (!reached(engine.time(), t)) return t;
+    return 6.5 * dt;
+  };
+  hooks.after_step = [&](const StepReport& r) {
+    times.push_back(r.time);
+    return Next::Continue;
+  };
+  BOOST_TEST((drive(engine, 6.5 * dt, hooks) == DriveEnd::Reached));
+  BOOST_REQUIRE(times.size() == 8u);
+  BOOST_TEST(times[2] == 2.5 * dt, boost::test_tools::tolerance(kTimeSlack));
+  BOOST_TEST(times[5] == 5.0 * dt, boost::test_tools::tolerance(kTimeSlack));
+  BOOST_TEST(times[7] == 6.5 * dt, boost::test_tools::tolerance(kTimeSlack));
+  BOOST_TEST((drive(engine, 6.5 * dt, {}) == DriveEnd::Reached));  // already there: no step
+  BOOST_TEST(engine.statistics().steps == 8);
+
+  Engine stopped(s, m);
+  hooks = {};
+  hooks.after_step = [&](const StepReport& r) { return r.step == 3 ? Next::Stop : Next::Continue; };
+  BOOST_TEST((drive(stopped, 6.5 * dt, hooks) == DriveEnd::Stopped));
+  BOOST_TEST(stopped.statistics().steps == 3);
+  hooks = {};
+  hooks.interrupt = [] { return Next::Stop; };
+  BOOST_TEST((drive(engine, 6.5 * dt, hooks) == DriveEnd::Stopped));
 }
 
 // Bodies that interpenetrate at t = 0 are reported: the plate raised into the disc by twice the

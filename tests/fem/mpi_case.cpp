@@ -1,4 +1,4 @@
-// Helper of fem_mpi_test (issue 5, test 5): solves a small static Hondros disc and a short
+// Helper of fem_mpi (issue 5, test 5): solves a small static Hondros disc and a short
 // impact response, and rank 0 writes the centre, profile and gauge values to the CSV named on
 // the command line, and the impact's VTU snapshots beside it (OUT_vtk/run.pvd). Run serially and
 // under `mpirun -np 2`; the test compares the two.

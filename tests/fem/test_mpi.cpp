@@ -77,7 +77,7 @@ Values run(const std::string& launcher, const std::filesystem::path& csv) {
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(serial_and_two_ranks_agree) {
-  const auto dir = std::filesystem::current_path() / "fem_mpi_test.out";
+  const auto dir = std::filesystem::current_path() / "fem_mpi.out";
   std::filesystem::create_directories(dir);
   const Values serial = run("", dir / "serial.csv");
   const Values parallel = run(std::string(MPIEXEC) + " -np 2 --oversubscribe", dir / "np2.csv");

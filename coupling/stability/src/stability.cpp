@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 
+#include "ddafrac/dda/drive.hpp"
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/dda/run.hpp"
 #include "ddafrac/meshes/generate.hpp"
@@ -16,8 +17,6 @@
 namespace ddafrac::coupling {
 
 namespace {
-
-constexpr double kTimeSlack = 1e-9;  // relative: the end time counts as reached within this
 
 double triangle_area(const meshes::Point& a, const meshes::Point& b, const meshes::Point& c) {
   return 0.5 * ((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
@@ -189,99 +188,73 @@ std::vector<StabilityCase> stability_cases() {
   return cases;
 }
 
-StabilityResult run_stability_case(const StabilityCase& c, const std::filesystem::path& scenes_dir,
-                                   const std::function<void(const StabilityProgress&)>& progress,
-                                   double progress_every) {
-  StabilityResult r;
-  r.name = c.name;
-  r.extreme = c.extreme;
-  r.end_time = c.end_time;
-  const double t0 = omp_get_wtime();
-  std::unique_ptr<dda::Engine> engine;
-  bool guard = false;
-  try {
-    std::vector<std::string> overrides = c.overrides;
-    overrides.push_back(fmt::format("analysis.end_time={:.17g}", c.end_time));
-    overrides.push_back(fmt::format("analysis.output_interval={:.17g}", c.end_time));  // no outputs here
-    scene::Scene sc = scene::load_scene(scenes_dir / c.scene, overrides);
-    sc.gauges.clear();  // gauges are not measured here (and lie outside a sliver slab)
-    r.mode = sc.analysis.mode == scene::Mode::Static ? "static" : "dynamic";
-    const meshes::Mesh mesh = c.sliver ? make_sliver_slab_mesh(*c.sliver) : meshes::generate_dda_mesh(sc.geometry, sc.mesh);
-    r.aspect = max_aspect_ratio(mesh, "disc");
-    engine = std::make_unique<dda::Engine>(std::move(sc), mesh);
-    dda::Engine& e = *engine;
-    r.blocks = e.blocks().block_count();
-    r.penetration_allowed = kPenetrationAllowanceFactor * mean_smallest_altitude(e.blocks());
+namespace {
 
-    const double energy0 = e.energies().stored();
-    r.energy_max = energy0;
-    r.supplied_max = energy0;
-    double last_progress = t0;
-    const double end = c.end_time;
-    for (;;) {
-      if (e.time() >= end * (1.0 - kTimeSlack)) {
-        r.end_reached = true;
-        break;
-      }
-      const double wall = omp_get_wtime() - t0;
-      if (r.steps >= c.max_steps || wall > c.max_wall) {
-        guard = true;
-        r.message = r.steps >= c.max_steps
-                        ? fmt::format("step guard: {} steps reached at t = {:.6g} s of {:.6g} s", r.steps, e.time(), end)
-                        : fmt::format("wall guard: {:.0f} s reached at step {}, t = {:.6g} s of {:.6g} s", c.max_wall,
-                                      r.steps, e.time(), end);
-        break;
-      }
-      const dda::StepReport rep = e.step(end - e.time());
-      r.steps = rep.step;
-      const double energy = rep.ledger.stored.stored();
-      const double supplied = rep.ledger.initial + rep.ledger.work();
-      r.balance_error = rep.ledger.largest_balance_error;
-      if (!std::isfinite(energy) || !std::isfinite(supplied) || !std::isfinite(rep.max_penetration) ||
-          !all_vertices_finite(e.blocks())) {
-        r.nan = true;
-        r.message = fmt::format("NaN or infinity at step {}, t = {:.9g} s (energy {}, penetration {}) that the engine did "
-                                "not report",
-                                rep.step, rep.time, energy, rep.max_penetration);
-        break;
-      }
-      r.energy_max = std::max(r.energy_max, energy);
-      r.supplied_max = std::max(r.supplied_max, supplied);
-      const double ratio = supplied > 0.0 ? energy / supplied : (energy > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
-      if (ratio > r.energy_ratio) {
-        r.energy_ratio = ratio;
-        r.energy_ratio_step = rep.step;
-      }
-      r.penetration_max = std::max(r.penetration_max, rep.max_penetration);
-      if (!(ratio <= kEnergyBoundFactor)) break;  // unstable: the verdict is known, stop here
-      if (progress && omp_get_wtime() - last_progress >= progress_every) {
-        last_progress = omp_get_wtime();
-        progress({rep.step, rep.time, end, last_progress - t0});
-      }
-    }
-  } catch (const dda::NumericalTrouble& ex) {
-    r.exit_status = dda::kRunNumericalTrouble;  // as `ddafrac run`
-    r.message = ex.what();
-  } catch (const std::exception& ex) {
-    r.exit_status = 1;
-    r.message = ex.what();
-  }
-  r.wall = omp_get_wtime() - t0;
-  if (engine) {
-    const dda::Statistics& st = engine->statistics();
-    r.steps = st.steps;
-    r.time = engine->time();
-    r.cuts_displacement = st.cuts_displacement;
-    r.cuts_open_close = st.cuts_open_close;
-    r.cuts_solver = st.cuts_solver;
-    r.dt_min = st.dt_min;
-    r.dt_max = st.dt_max;
-    r.cracks = engine->crack_counts().total;
-    r.missed_contacts = st.missed_contacts;
-    r.deepest_missed = st.deepest_missed;
-  }
+/// The case's engine: its scene with the case's end time, no outputs and no gauges, on the
+/// scene's mesh or the sliver slab. Fills the result's mode, aspect ratio, block count and
+/// penetration allowance.
+std::unique_ptr<dda::Engine> build_case(const StabilityCase& c, const std::filesystem::path& scenes_dir,
+                                        StabilityResult& r) {
+  std::vector<std::string> overrides = c.overrides;
+  overrides.push_back(fmt::format("analysis.end_time={:.17g}", c.end_time));
+  overrides.push_back(fmt::format("analysis.output_interval={:.17g}", c.end_time));  // no outputs here
+  scene::Scene sc = scene::load_scene(scenes_dir / c.scene, overrides);
+  sc.gauges.clear();  // gauges are not measured here (and lie outside a sliver slab)
+  r.mode = sc.analysis.mode == scene::Mode::Static ? "static" : "dynamic";
+  const meshes::Mesh mesh = c.sliver ? make_sliver_slab_mesh(*c.sliver) : meshes::generate_dda_mesh(sc.geometry, sc.mesh);
+  r.aspect = max_aspect_ratio(mesh, "disc");
+  auto engine = std::make_unique<dda::Engine>(std::move(sc), mesh);
+  r.blocks = engine->blocks().block_count();
+  r.penetration_allowed = kPenetrationAllowanceFactor * mean_smallest_altitude(engine->blocks());
+  const double energy0 = engine->energies().stored();
+  r.energy_max = energy0;
+  r.supplied_max = energy0;
+  return engine;
+}
 
-  // Verdict.
+/// One accepted step against the bounds: NaN, stored energy over supplied, penetration. Stop
+/// once the step decides the verdict (NaN, or energy above its bound).
+dda::Next watch_step(const dda::StepReport& rep, const dda::Engine& e, StabilityResult& r) {
+  r.steps = rep.step;
+  const double energy = rep.ledger.stored.stored();
+  const double supplied = rep.ledger.initial + rep.ledger.work();
+  r.balance_error = rep.ledger.largest_balance_error;
+  if (!std::isfinite(energy) || !std::isfinite(supplied) || !std::isfinite(rep.max_penetration) ||
+      !all_vertices_finite(e.blocks())) {
+    r.nan = true;
+    r.message = fmt::format("NaN or infinity at step {}, t = {:.9g} s (energy {}, penetration {}) that the engine did "
+                            "not report",
+                            rep.step, rep.time, energy, rep.max_penetration);
+    return dda::Next::Stop;
+  }
+  r.energy_max = std::max(r.energy_max, energy);
+  r.supplied_max = std::max(r.supplied_max, supplied);
+  const double ratio = supplied > 0.0 ? energy / supplied : (energy > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+  if (ratio > r.energy_ratio) {
+    r.energy_ratio = ratio;
+    r.energy_ratio_step = rep.step;
+  }
+  r.penetration_max = std::max(r.penetration_max, rep.max_penetration);
+  return ratio <= kEnergyBoundFactor ? dda::Next::Continue : dda::Next::Stop;  // unstable: the verdict is known
+}
+
+void record_statistics(const dda::Engine& e, StabilityResult& r) {
+  const dda::Statistics& st = e.statistics();
+  r.steps = st.steps;
+  r.time = e.time();
+  r.cuts_displacement = st.cuts_displacement;
+  r.cuts_open_close = st.cuts_open_close;
+  r.cuts_solver = st.cuts_solver;
+  r.dt_min = st.dt_min;
+  r.dt_max = st.dt_max;
+  r.cracks = e.crack_counts().total;
+  r.missed_contacts = st.missed_contacts;
+  r.deepest_missed = st.deepest_missed;
+}
+
+/// The verdict, and whether it is the one the case expects. `guard`: a step or wall guard
+/// stopped the case.
+void judge(const StabilityCase& c, bool guard, StabilityResult& r) {
   if (r.exit_status == dda::kRunNumericalTrouble) {
     r.verdict = Verdict::FailedCleanly;
     r.verdict_text = "failed cleanly (exit 3)";
@@ -311,6 +284,54 @@ StabilityResult run_stability_case(const StabilityCase& c, const std::filesystem
   r.as_expected = c.expect == Expectation::Stable
                       ? (r.verdict == Verdict::Stable || r.verdict == Verdict::PenetrationHigh)
                       : r.verdict == Verdict::FailedCleanly && contains_all(r.message, c.expected_message);
+}
+
+}  // namespace
+
+StabilityResult run_stability_case(const StabilityCase& c, const std::filesystem::path& scenes_dir,
+                                   const std::function<void(const StabilityProgress&)>& progress,
+                                   double progress_every) {
+  StabilityResult r;
+  r.name = c.name;
+  r.extreme = c.extreme;
+  r.end_time = c.end_time;
+  const double t0 = omp_get_wtime();
+  std::unique_ptr<dda::Engine> engine;
+  bool guard = false;
+  try {
+    engine = build_case(c, scenes_dir, r);
+    dda::Engine& e = *engine;
+    double last_progress = t0;
+    dda::DriveHooks hooks;
+    hooks.before_step = [&] {
+      const double wall = omp_get_wtime() - t0;
+      if (r.steps < c.max_steps && !(wall > c.max_wall)) return dda::Next::Continue;
+      guard = true;
+      r.message = r.steps >= c.max_steps
+                      ? fmt::format("step guard: {} steps reached at t = {:.6g} s of {:.6g} s", r.steps, e.time(), c.end_time)
+                      : fmt::format("wall guard: {:.0f} s reached at step {}, t = {:.6g} s of {:.6g} s", c.max_wall,
+                                    r.steps, e.time(), c.end_time);
+      return dda::Next::Stop;
+    };
+    hooks.after_step = [&](const dda::StepReport& rep) {
+      if (watch_step(rep, e, r) == dda::Next::Stop) return dda::Next::Stop;
+      if (progress && omp_get_wtime() - last_progress >= progress_every) {
+        last_progress = omp_get_wtime();
+        progress({rep.step, rep.time, c.end_time, last_progress - t0});
+      }
+      return dda::Next::Continue;
+    };
+    r.end_reached = dda::drive(e, c.end_time, hooks) == dda::DriveEnd::Reached;
+  } catch (const dda::NumericalTrouble& ex) {
+    r.exit_status = dda::kRunNumericalTrouble;  // as `ddafrac run`
+    r.message = ex.what();
+  } catch (const std::exception& ex) {
+    r.exit_status = 1;
+    r.message = ex.what();
+  }
+  r.wall = omp_get_wtime() - t0;
+  if (engine) record_statistics(*engine, r);
+  judge(c, guard, r);
   return r;
 }
 

@@ -21,7 +21,7 @@ fem::Material disc_material(const scene::Scene& s) {
   const auto& m = s.materials.at(disc->material);
   fem::Material out;
   out.elastic = {m.young, m.poisson, m.density};
-  out.plane = s.analysis.plane == scene::PlaneModel::Strain ? fem::PlaneModel::Strain : fem::PlaneModel::Stress;
+  out.plane = s.analysis.plane;
   return out;
 }
 

@@ -11,11 +11,12 @@
 #include "ddafrac/coupling/dda_twin.hpp"
 #include "ddafrac/coupling/impact_runs.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
+#include "ddafrac/dda/drive.hpp"
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "dynamic/impact_scene.hpp"
-#include "thread_scope.hpp"
 #include "ddafrac/common/stopwatch.hpp"
+#include "ddafrac/common/thread_scope.hpp"
 
 namespace ddafrac::coupling {
 
@@ -26,9 +27,6 @@ using common::seconds_since;
 
 /// A progress line every this many steps (ImpactSettings::quiet off).
 constexpr long kProgressEverySteps = 200;
-/// The run ends when the time is within this share of the end time (the last step lands on it
-/// up to rounding).
-constexpr double kEndTimeSlack = 1e-12;
 
 /// The scene's DDA mesh without the plate: only the cells of the disc body.
 meshes::Mesh disc_only(const meshes::Mesh& mesh, const std::string& disc) {
@@ -91,7 +89,7 @@ GaugeHistories run_impact_dda(const scene::Scene& scene, const ImpactSettings& s
   const meshes::Mesh mesh = disc_only(meshes::generate_dda_mesh(scene.geometry, scene.mesh), disc_body(scene).name);
   out.mesh_wall = seconds_since(mesh_start);
 
-  const ThreadScope threads(settings.threads);
+  const common::ThreadScope threads(settings.threads);
   const auto start = Clock::now();
   dda::EngineOptions options;
   options.anchors = patch_anchors(mesh);
@@ -102,15 +100,18 @@ GaugeHistories run_impact_dda(const scene::Scene& scene, const ImpactSettings& s
   out.dt = twin.scene.analysis.dt_max;
   out.kn = twin.kn;
   sample_gauges(engine, out);
-  const double end = twin.scene.analysis.end_time;
-  while (engine.time() < end * (1.0 - kEndTimeSlack)) {
-    if (settings.max_steps > 0 && out.steps >= settings.max_steps) break;
-    const dda::StepReport r = engine.step(end - engine.time());
+  dda::DriveHooks hooks;
+  hooks.before_step = [&] {
+    return settings.max_steps > 0 && out.steps >= settings.max_steps ? dda::Next::Stop : dda::Next::Continue;
+  };
+  hooks.after_step = [&](const dda::StepReport& r) {
     ++out.steps;
     sample_gauges(engine, out);
     if (!settings.quiet && out.steps % kProgressEverySteps == 0)
       fmt::print("  DDA step {} t = {:.2f} µs, CG {}\n", out.steps, engine.time() * 1e6, r.cg_iterations);
-  }
+    return dda::Next::Continue;
+  };
+  dda::drive(engine, twin.scene.analysis.end_time, hooks);
   const auto& st = engine.statistics();
   out.cg_total = st.cg_total;
   out.cg_max = st.cg_max;

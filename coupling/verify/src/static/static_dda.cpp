@@ -14,16 +14,19 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <stdexcept>
 #include <unordered_map>
 
 #include "ddafrac/common/angles.hpp"
+#include "ddafrac/common/polygon.hpp"
 #include "ddafrac/coupling/dda_twin.hpp"
+#include "ddafrac/dda/drive.hpp"
 #include "ddafrac/meshes/generate.hpp"
-#include "thread_scope.hpp"
 #include "ddafrac/common/stopwatch.hpp"
+#include "ddafrac/common/thread_scope.hpp"
 
 namespace ddafrac::coupling {
 
@@ -48,28 +51,17 @@ DdaTwin static_twin(const scene::Scene& scene, double kn_over_young) {
   return twin;
 }
 
-double cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
-
-bool inside_cell(const meshes::Mesh& m, std::size_t c, double x, double y) {
-  const auto n = m.cell_size(c);
-  const auto* nodes = m.cell_begin(c);
-  int sign = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const auto& p = m.nodes[nodes[k]];
-    const auto& q = m.nodes[nodes[(k + 1) % n]];
-    const double c2 = cross(q.x - p.x, q.y - p.y, x - p.x, y - p.y);
-    const int s = c2 > 0.0 ? 1 : (c2 < 0.0 ? -1 : 0);
-    if (s != 0) {
-      if (sign != 0 && s != sign) return false;
-      sign = s;
-    }
-  }
-  return true;
-}
-
 std::optional<std::size_t> cell_containing(const meshes::Mesh& m, double x, double y) {
-  for (std::size_t c = 0; c < m.cell_count(); ++c)
-    if (inside_cell(m, c, x, y)) return c;
+  std::vector<double> cx, cy;
+  for (std::size_t c = 0; c < m.cell_count(); ++c) {
+    cx.clear();
+    cy.clear();
+    for (const meshes::Index* n = m.cell_begin(c); n != m.cell_begin(c) + m.cell_size(c); ++n) {
+      cx.push_back(m.nodes[*n].x);
+      cy.push_back(m.nodes[*n].y);
+    }
+    if (common::inside_polygon(cx.data(), cy.data(), cx.size(), x, y)) return c;
+  }
   return std::nullopt;
 }
 
@@ -236,8 +228,11 @@ void step_to_rest(dda::Engine& engine, double pressure, int max_steps, bool quie
   std::vector<std::array<double, 2>> anchor_start;
   for (const auto& a : b.anchors) anchor_start.push_back({a.x, a.y});
   std::vector<dda::Vec3> previous = b.stress;
-  for (int k = 0; k < max_steps; ++k) {
-    const auto report = engine.step();
+  int taken = 0;  // steps
+  dda::DriveHooks hooks;
+  hooks.before_step = [&] { return taken < max_steps ? dda::Next::Continue : dda::Next::Stop; };
+  hooks.after_step = [&](const dda::StepReport& report) {
+    ++taken;
     out.anchor_rigid = follow_deformation(engine.blocks().anchors, anchor_start);
     out.steps = report.step;
     out.dt_cuts += report.cuts;
@@ -253,14 +248,15 @@ void step_to_rest(dda::Engine& engine, double pressure, int max_steps, bool quie
     if (!quiet)
       fmt::print("verify: DDA step {}: largest step displacement / total {:.2e}, largest stress change / pressure {:.2e}\n",
                  report.step, out.last_step_ratio, out.last_stress_change);
-    if (k >= 1 && out.last_step_ratio < kStaticTolerance) break;
-  }
+    return taken >= 2 && out.last_step_ratio < kStaticTolerance ? dda::Next::Stop : dda::Next::Continue;
+  };
+  dda::drive(engine, std::numeric_limits<double>::infinity(), hooks);  // no end time: until at rest
 }
 
 }  // namespace
 
 StaticDdaRun run_static_dda(const scene::Scene& scene, const StaticSetup& st, const VerifyOptions& o) {
-  const ThreadScope threads(o.threads);
+  const common::ThreadScope threads(o.threads);
   StaticDdaRun out;
   const auto start = Clock::now();
   const DdaTwin twin = static_twin(scene, o.stiffness_ratio);

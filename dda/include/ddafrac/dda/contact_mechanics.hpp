@@ -39,6 +39,19 @@ struct ContactCoefficients {
 };
 ContactCoefficients contact_coefficients(const Contact& c);
 
+/// The strength of a joint over a length l (m) under the compressive normal force f_c >= 0
+/// (N/m): tension up to σt·l (the tension cut-off) and shear up to c·l + f_c·tanφ
+/// (Mohr-Coulomb), both N/m. One law for both joint kinds: the fracture check of the virtual
+/// joints (failure_ratios) and the cohesion of the intact real joints (judge_contact).
+struct JointStrength {
+  double tension = 0.0;  // N/m, largest tensile normal force
+  double shear = 0.0;    // N/m, largest shear force
+};
+inline JointStrength joint_strength(double tensile_strength, double cohesion, double tan_phi, double length,
+                                    double compression) {
+  return {tensile_strength * length, cohesion * length + compression * tan_phi};
+}
+
 /// Judges one contact from the solution of its two blocks; returns true if its state changed.
 /// Bonded contacts stay locked (they carry tension; breaking is the fracture check's job).
 /// Cohesive contacts (intact real joints) stay locked, tension included, while the tension is

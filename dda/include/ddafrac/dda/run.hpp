@@ -1,5 +1,5 @@
 #pragma once
-// A whole run: the time loop driving an Engine to the scene's end time, writing the run
+// A whole run: an Engine driven (drive.hpp) to the scene's end time, writing the run
 // directory: summary.json, history.csv, vtk/*.vtu + run.pvd, scene.resolved.toml, and
 // checkpoint.bin while the run is unfinished. Every file is written whole (temporary name, then
 // rename), so an interrupted or failed run leaves valid files, and a checkpointed one can be

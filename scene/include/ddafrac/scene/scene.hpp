@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "ddafrac/common/plane_model.hpp"
 #include "ddafrac/meshes/geometry.hpp"
 #include "ddafrac/scene/defaults.hpp"
 
@@ -45,7 +46,7 @@ struct Body {
   Vec2 prescribed_velocity{0.0, 0.0};         // m/s, for Motion::Prescribed
 };
 
-enum class PlaneModel { Stress, Strain };
+using common::PlaneModel;
 enum class Mode { Dynamic, Static };
 enum class Solver { Pcg, Direct };  // block-Jacobi PCG, or a sparse direct factorisation
 

@@ -1,12 +1,14 @@
 #pragma once
 // Analytic reference solutions of the Brazilian disc test and of elastic waves. Part of the
-// leaf library ddafrac::reference (closed forms and error measures), which depends on nothing:
-// the FEM (fem/), the DDA and the comparisons of coupling/ may all use it. No deal.II, no
-// Eigen: plain doubles.
+// leaf library ddafrac::reference (closed forms and error measures), which depends on nothing
+// but common/: the FEM (fem/), the DDA and the comparisons of coupling/ may all use it. No
+// deal.II, no Eigen: plain doubles.
 //
 // Conventions: SI units, tension positive, 2D (per unit thickness unless `thickness` is given).
 // The disc has its centre at the origin and is loaded along the y axis (top point (0, R),
 // bottom point (0, -R)); loads are compressive and given as positive magnitudes.
+
+#include "ddafrac/common/plane_model.hpp"
 
 namespace ddafrac::reference {
 
@@ -71,7 +73,7 @@ Stress2 hondros_superposition(const Disc& disc, const HondrosLoad& load, double 
 /// vertical resultant (p = P / (2 R t sin alpha)), evaluated at the centre.
 Stress2 flattened_disc_centre_arc_mapped(const Disc& disc, double load, double flat_angle);
 
-enum class PlaneModel { Stress, Strain };
+using common::PlaneModel;
 
 struct Elastic {
   double young = 0.0;    // Pa

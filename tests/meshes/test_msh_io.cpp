@@ -1,6 +1,6 @@
 // .msh files: ASCII 4.1 round trip of generated meshes, reorientation of clockwise cells, and
 // a clear error (file name + reason) for every kind of file we cannot use.
-#define BOOST_TEST_MODULE test_meshes_msh_io
+#define BOOST_TEST_MODULE meshes_msh_io
 #include <boost/test/unit_test.hpp>
 
 #include <filesystem>

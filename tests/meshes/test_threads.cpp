@@ -1,6 +1,6 @@
 // gmsh sets the process-wide OpenMP thread count; meshing must leave the caller's count as it
 // was, or a DDA run after meshing silently runs on one thread.
-#define BOOST_TEST_MODULE test_meshes_threads
+#define BOOST_TEST_MODULE meshes_threads
 #include <boost/test/unit_test.hpp>
 
 #include <omp.h>

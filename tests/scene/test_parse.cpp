@@ -1,6 +1,6 @@
 // Scene parsing: a valid scene gives the values it states (in SI units), and each of many
 // bad scenes is refused with a message that names the file, line, key and what was expected.
-#define BOOST_TEST_MODULE test_scene_parse
+#define BOOST_TEST_MODULE scene_parse
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // Every ready scene in scenes/ parses, and the study's cases carry the study's parameters
 // (source study).
-#define BOOST_TEST_MODULE test_scene_files
+#define BOOST_TEST_MODULE scene_files
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

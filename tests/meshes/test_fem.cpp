@@ -1,6 +1,6 @@
 // FEM meshes: the disc alone, triangles or all-quadrilateral, counter-clockwise, with the
 // boundary groups, at the requested element size.
-#define BOOST_TEST_MODULE test_meshes_fem
+#define BOOST_TEST_MODULE meshes_fem
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

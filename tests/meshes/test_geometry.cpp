@@ -1,6 +1,6 @@
 // Geometry of the generated DDA meshes: areas, slot length and angle, orientation, group names,
 // rigid bodies, determinism, and measure_quality on a hand-made mesh.
-#define BOOST_TEST_MODULE test_meshes_geometry
+#define BOOST_TEST_MODULE meshes_geometry
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // PNG pictures: requested width, aspect ratio kept, disc centre in the disc's colour.
-#define BOOST_TEST_MODULE test_meshes_picture
+#define BOOST_TEST_MODULE meshes_picture
 #include <boost/test/unit_test.hpp>
 
 #include <cairo.h>

@@ -1,6 +1,6 @@
 // The block counts of the source study are hit by the sizing loop, and the
 // meshes are fit for the DDA (no sliver triangles).
-#define BOOST_TEST_MODULE test_meshes_study_counts
+#define BOOST_TEST_MODULE meshes_study_counts
 #include <boost/test/unit_test.hpp>
 
 #include <chrono>
