@@ -2,9 +2,9 @@
 // CSV. Either a glued ring-triangulated disc impacting a plate at several block counts (scaling),
 // or the first steps of a real scene (`--scene FILE [--set key=value]`), medians of repeats.
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <omp.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <filesystem>
@@ -13,13 +13,13 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "option_checks.hpp"
-#include "scene_source.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/dda/drive.hpp"
 #include "ddafrac/dda/run.hpp"
 #include "ddafrac/dda/synthetic.hpp"
 #include "machine_ceiling.hpp"
+#include "option_checks.hpp"
+#include "scene_source.hpp"
 
 namespace ddafrac::app {
 
@@ -126,8 +126,8 @@ void run_bench(const BenchArguments& a) {
   const int most_threads = *std::max_element(a.threads.begin(), a.threads.end());
   if (a.ceiling && most_threads > 1) {
     const MachineCeiling m = measure_machine_ceiling(most_threads);
-    fmt::print("machine ceiling with {} threads: compute-bound kernel {:.2f}x, memory-bound kernel {:.2f}x\n", m.threads,
-               m.compute_speedup, m.memory_speedup);
+    fmt::print("machine ceiling with {} threads: compute-bound kernel {:.2f}x, memory-bound kernel {:.2f}x\n",
+               m.threads, m.compute_speedup, m.memory_speedup);
     ceiling = {{"threads", m.threads}, {"compute_speedup", m.compute_speedup}, {"memory_speedup", m.memory_speedup}};
   }
   fmt::print("{}, {} steps after {} warm-up steps, solver {}, median of {}; µs per block-step\n",
@@ -140,29 +140,32 @@ void run_bench(const BenchArguments& a) {
     for (int t : a.threads) {
       const BenchRow r = bench_median(bc, t, a);
       if (base == 0.0) base = r.us.total();
-      fmt::print("{:>7} {:>8} {:>7} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>7.2f} {:>7.2f}x\n",
-                 r.blocks, r.contacts, r.threads, r.us.total(), r.us.detection, r.us.assembly, r.us.solve,
-                 r.us.judgement, r.us.fracture, r.us.update, r.cg_mean, base / r.us.total());
+      fmt::print(
+          "{:>7} {:>8} {:>7} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>7.2f} {:>7.2f}x\n",
+          r.blocks, r.contacts, r.threads, r.us.total(), r.us.detection, r.us.assembly, r.us.solve, r.us.judgement,
+          r.us.fracture, r.us.update, r.cg_mean, base / r.us.total());
       std::fflush(stdout);
       rows.push_back(r);
     }
   }
   nlohmann::json cases = nlohmann::json::array();
-  std::string csv = "blocks,contacts,threads,steps,total_us,detection_us,assembly_us,solve_us,judgement_us,fracture_us,update_us,cg_mean\n";
+  std::string csv =
+      "blocks,contacts,threads,steps,total_us,detection_us,assembly_us,solve_us,judgement_us,fracture_us,update_us,cg_"
+      "mean\n";
   for (const BenchRow& r : rows) {
     cases.push_back({{"blocks", r.blocks},
-                 {"contacts", r.contacts},
-                 {"threads", r.threads},
-                 {"steps", r.steps},
-                 {"us_per_block_step",
-                  {{"total", r.us.total()},
-                   {"detection", r.us.detection},
-                   {"assembly", r.us.assembly},
-                   {"solve", r.us.solve},
-                   {"judgement", r.us.judgement},
-                   {"fracture", r.us.fracture},
-                   {"update", r.us.update}}},
-                 {"cg_iterations_mean", r.cg_mean}});
+                     {"contacts", r.contacts},
+                     {"threads", r.threads},
+                     {"steps", r.steps},
+                     {"us_per_block_step",
+                      {{"total", r.us.total()},
+                       {"detection", r.us.detection},
+                       {"assembly", r.us.assembly},
+                       {"solve", r.us.solve},
+                       {"judgement", r.us.judgement},
+                       {"fracture", r.us.fracture},
+                       {"update", r.us.update}}},
+                     {"cg_iterations_mean", r.cg_mean}});
     csv += fmt::format("{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.3f}\n", r.blocks, r.contacts,
                        r.threads, r.steps, r.us.total(), r.us.detection, r.us.assembly, r.us.solve, r.us.judgement,
                        r.us.fracture, r.us.update, r.cg_mean);
@@ -184,21 +187,29 @@ void run_bench(const BenchArguments& a) {
 void register_bench_command(CLI::App& app) {
   auto args = std::make_shared<BenchArguments>();
   CLI::App* command =
-      app.add_subcommand("bench", "benchmark the DDA engine: µs per block-step per phase, on a glued disc impacting a "
-                                  "plate at several sizes or on the first steps of a scene (--scene)");
+      app.add_subcommand("bench",
+                         "benchmark the DDA engine: µs per block-step per phase, on a glued disc impacting a "
+                         "plate at several sizes or on the first steps of a scene (--scene)");
   command->add_option("--blocks", args->blocks, "block counts (default 1000 2000 4000 8000 16000)")
       ->delimiter(',')
       ->check(whole_number(kSmallestRingDisc, kMaxBenchBlocks));
-  command->add_option("--scene", args->scene_file, "bench this scene file's first --steps steps instead of the synthetic disc")
+  command
+      ->add_option("--scene", args->scene_file,
+                   "bench this scene file's first --steps steps instead of the synthetic disc")
       ->check(CLI::ExistingFile);
-  command->add_option("--set", args->overrides, "override a value of the --scene scene, e.g. --set analysis.penalty=1.053e12")
+  command
+      ->add_option("--set", args->overrides,
+                   "override a value of the --scene scene, e.g. --set analysis.penalty=1.053e12")
       ->type_name("KEY=VALUE");
   command->add_option("--repeat", args->repeat, "runs per case; the median by total time is reported (default 1)")
       ->check(whole_number(1));
-  command->add_option("--threads", args->threads, "thread counts (default 1 2)")->delimiter(',')->check(whole_number(1, kMaxThreads));
+  command->add_option("--threads", args->threads, "thread counts (default 1 2)")
+      ->delimiter(',')
+      ->check(whole_number(1, kMaxThreads));
   command->add_option("--steps", args->steps, "timed steps per case")->check(whole_number(1));
   command->add_option("--warmup", args->warmup, "untimed steps first")->check(whole_number(0));
-  command->add_option("--solver", args->solver, "pcg or direct (default: the scene's analysis.solver)")->check(CLI::IsMember({"pcg", "direct"}));
+  command->add_option("--solver", args->solver, "pcg or direct (default: the scene's analysis.solver)")
+      ->check(CLI::IsMember({"pcg", "direct"}));
   command->add_option("--out", args->out, "directory for bench.json and bench.csv");
   command->add_flag("!--no-ceiling", args->ceiling,
                     "skip the machine's own speed-up ceiling (compute- and memory-bound kernels, ~3 s)");

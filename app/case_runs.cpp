@@ -32,8 +32,10 @@ void refuse_shared_names(const std::vector<CaseRun>& cases) {
   for (const auto& [name, files] : files_of)
     if (files.size() > 1) problems += fmt::format("\n  \"{}\": {}", name, fmt::join(files, ", "));
   if (!problems.empty())
-    throw CommandFailed("cases share a scene name, so their runs would overwrite each other (nothing was run; give "
-                        "each a name = \"...\"):" + problems);
+    throw CommandFailed(
+        "cases share a scene name, so their runs would overwrite each other (nothing was run; give "
+        "each a name = \"...\"):" +
+        problems);
 }
 
 std::vector<std::string> run_arguments(const CaseRun& c, const CaseRunSettings& settings) {
@@ -47,7 +49,8 @@ std::vector<std::string> run_arguments(const CaseRun& c, const CaseRunSettings& 
     argv.push_back(c.run_dir.string());
     return argv;
   }
-  for (const std::string& item : {c.scene_file.string(), std::string("--out"), c.run_dir.string()}) argv.push_back(item);
+  for (const std::string& item : {c.scene_file.string(), std::string("--out"), c.run_dir.string()})
+    argv.push_back(item);
   for (const std::string& o : settings.overrides) {
     argv.push_back("--set");
     argv.push_back(o);
@@ -77,9 +80,12 @@ std::vector<CaseRun> load_case_runs(const std::vector<fs::path>& scene_files, co
       c.run_dir = out / c.scene.name;
       cases.push_back(std::move(c));
     } catch (const scene::SceneError& e) {
-      const auto same = std::find_if(problems.begin(), problems.end(), [&](const auto& p) { return p.first == e.what(); });
-      if (same == problems.end()) problems.push_back({e.what(), {file.string()}});
-      else same->second.push_back(file.string());
+      const auto same =
+          std::find_if(problems.begin(), problems.end(), [&](const auto& p) { return p.first == e.what(); });
+      if (same == problems.end())
+        problems.push_back({e.what(), {file.string()}});
+      else
+        same->second.push_back(file.string());
     }
   }
   if (!problems.empty()) {
@@ -159,13 +165,16 @@ void run_cases(std::vector<CaseRun>& cases, const CaseRunSettings& settings) {
     ++done;
     fmt::print("[{}/{}] {} {} in {:.1f} s{}\n", done, cases.size(), c.scene.name,
                c.exit_code == 0 ? "finished" : "FAILED", c.wall_seconds,
-               c.exit_code == 0 ? "" : fmt::format(" (exit status {}; see {})", c.exit_code, (c.run_dir / "run.log").string()));
+               c.exit_code == 0
+                   ? ""
+                   : fmt::format(" (exit status {}; see {})", c.exit_code, (c.run_dir / "run.log").string()));
     std::fflush(stdout);
     if (settings.after_each) settings.after_each();
   }
   // A resumed case took the time of all its parts.
   for (CaseRun& c : cases)
-    if (c.start == Start::FromCheckpoint) c.wall_seconds = summary_wall(read_summary(c.run_dir)).value_or(c.wall_seconds);
+    if (c.start == Start::FromCheckpoint)
+      c.wall_seconds = summary_wall(read_summary(c.run_dir)).value_or(c.wall_seconds);
 }
 
 }  // namespace ddafrac::app

@@ -40,11 +40,11 @@ std::vector<CaseRun> load_case_runs(const std::vector<std::filesystem::path>& sc
 void decide_start(CaseRun& c);
 
 struct CaseRunSettings {
-  int threads = 1;                          // OpenMP threads of each run
-  int parallel = 1;                         // runs at once
-  std::optional<double> checkpoint_every;   // s, passed to every run (default: the run's own)
-  std::vector<std::string> overrides;       // `--set` values of every run
-  std::function<void()> after_each;         // called after each case ends (e.g. to rewrite a table)
+  int threads = 1;                         // OpenMP threads of each run
+  int parallel = 1;                        // runs at once
+  std::optional<double> checkpoint_every;  // s, passed to every run (default: the run's own)
+  std::vector<std::string> overrides;      // `--set` values of every run
+  std::function<void()> after_each;        // called after each case ends (e.g. to rewrite a table)
 };
 
 /// Runs the cases that are not Finished, `parallel` at a time, each logged to its run.log,

@@ -4,8 +4,8 @@
 // elastodynamic gauge histories (the disc moving at v0 with the impact patch held from t = 0),
 // energies and VTU snapshots listed in run.pvd. Under mpirun, rank 0 writes.
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -16,14 +16,14 @@
 #include <variant>
 
 #include "commands.hpp"
-#include "fem_session.hpp"
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
 #include "ddafrac/fem/dynamic_problem.hpp"
 #include "ddafrac/fem/static_problem.hpp"
 #include "ddafrac/meshes/generate.hpp"
+#include "fem_session.hpp"
 #include "scene_source.hpp"
-#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::app {
 
@@ -42,8 +42,8 @@ struct FemArguments {
   double element_size = 0.0;  // m; 0 = D/25
   double load = default_load;
   double arc_half_angle_deg = default_arc_half_angle_deg;
-  double end_time = 0.0;  // s; 0 = the scene's
-  double dt = 0.0;        // s; 0 = the scene's dt_max
+  double end_time = 0.0;           // s; 0 = the scene's
+  double dt = 0.0;                 // s; 0 = the scene's dt_max
   double snapshot_interval = 0.0;  // s; 0 = the scene's output_interval
   double pulse_peak = 0.0;         // Pa; > 0: the patch is loaded by a half-sine pulse, not held
   double pulse_duration = 4e-6;    // s
@@ -57,22 +57,31 @@ void write_output(const std::filesystem::path& path, const std::string& text) {
 }
 
 std::string sample_row(const std::string& label, double t, const fem::StressSample& s) {
-  return fmt::format("{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", t, label, s.stress.xx,
-                     s.stress.yy, s.stress.xy, s.s1, s.s3);
+  return fmt::format("{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", t, label, s.stress.xx, s.stress.yy, s.stress.xy,
+                     s.s1, s.s3);
 }
 constexpr const char* gauge_header = "t,gauge,sxx,syy,txy,s1,s3\n";
 
 nlohmann::json stats_json(const fem::RunStats& s) {
-  return {{"cells", s.cells}, {"n_dofs", s.dofs}, {"solver", s.solver}, {"iterations", s.iterations},
-          {"setup_seconds", s.setup_seconds}, {"solve_seconds", s.solve_seconds}};
+  return {{"cells", s.cells},
+          {"n_dofs", s.dofs},
+          {"solver", s.solver},
+          {"iterations", s.iterations},
+          {"setup_seconds", s.setup_seconds},
+          {"solve_seconds", s.solve_seconds}};
 }
 
 /// Where a dynamic step's time goes: ms per step by phase.
 nlohmann::json step_times_json(const fem::DynamicResult& r) {
   const auto ms = [&](double seconds) { return 1e3 * seconds / std::max(r.steps, 1); };
   const auto& t = r.times;
-  return {{"rhs", ms(t.rhs)}, {"solve", ms(t.solve)}, {"update", ms(t.update)}, {"gauges", ms(t.gauges)},
-          {"energy", ms(t.energy)}, {"output", ms(t.output)}, {"total", ms(r.stats.solve_seconds)}};
+  return {{"rhs", ms(t.rhs)},
+          {"solve", ms(t.solve)},
+          {"update", ms(t.update)},
+          {"gauges", ms(t.gauges)},
+          {"energy", ms(t.energy)},
+          {"output", ms(t.output)},
+          {"total", ms(r.stats.solve_seconds)}};
 }
 
 nlohmann::json run_static(const FemArguments& args, const scene::Scene& s, meshes::Mesh mesh,
@@ -89,12 +98,14 @@ nlohmann::json run_static(const FemArguments& args, const scene::Scene& s, meshe
     load = {{"kind", "flat pressure"}, {"load_N_per_m", args.load}, {"pressure_Pa", args.load / width}};
   } else {
     const auto* plain = std::get_if<meshes::PlainDisc>(&s.geometry);
-    const double alpha = plain && plain->load_half_angle > 0.0 ? plain->load_half_angle
-                                                                : args.arc_half_angle_deg * common::kPi / 180.0;
+    const double alpha =
+        plain && plain->load_half_angle > 0.0 ? plain->load_half_angle : args.arc_half_angle_deg * common::kPi / 180.0;
     const double pressure = args.load / (alpha * d);
     problem.load = fem::ArcPressure{pressure, alpha};
-    load = {{"kind", "Hondros arc pressure"}, {"load_N_per_m", args.load},
-            {"half_angle_rad", alpha}, {"pressure_Pa", pressure}};
+    load = {{"kind", "Hondros arc pressure"},
+            {"load_N_per_m", args.load},
+            {"half_angle_rad", alpha},
+            {"pressure_Pa", pressure}};
   }
   const auto solution = fem::solve_static(problem);
 
@@ -106,13 +117,12 @@ nlohmann::json run_static(const FemArguments& args, const scene::Scene& s, meshe
   for (const auto& [name, x0, y0, x1, y1] :
        {std::tuple{"loaded", 0.0, -ry, 0.0, ry}, std::tuple{"horizontal", -r, 0.0, r, 0.0}}) {
     for (const auto& p : solution.profile(x0, y0, x1, y1, profile_points))
-      profiles << fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", name, p.x,
-                              p.y, p.stress.xx, p.stress.yy, p.stress.xy, p.s1, p.s3);
+      profiles << fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", name, p.x, p.y, p.stress.xx,
+                              p.stress.yy, p.stress.xy, p.s1, p.s3);
   }
   write_output(out / "profiles.csv", profiles.str());
   std::string gauges = gauge_header;
-  for (const auto& g : s.gauges)
-    gauges += sample_row(g.name, 0.0, solution.stress_at(g.position[0], g.position[1]));
+  for (const auto& g : s.gauges) gauges += sample_row(g.name, 0.0, solution.stress_at(g.position[0], g.position[1]));
   write_output(out / "gauges.csv", gauges);
   solution.write_vtu(out / "stress.vtu");
   nlohmann::json summary{{"kind", "static"}, {"load", load}, {"stats", stats_json(solution.stats())}};
@@ -138,8 +148,7 @@ nlohmann::json run_dynamic(const FemArguments& args, const scene::Scene& s, mesh
   if (args.pulse_peak > 0.0) {  // a disc at rest, the patch loaded by the pulse
     problem.v0 = 0.0;
     problem.pulse = fem::TractionPulse{args.pulse_peak, args.pulse_duration};
-    loading = {{"kind", "half-sine pressure pulse"}, {"peak_Pa", args.pulse_peak},
-               {"duration_s", args.pulse_duration}};
+    loading = {{"kind", "half-sine pressure pulse"}, {"peak_Pa", args.pulse_peak}, {"duration_s", args.pulse_duration}};
   }
   if (s.output.vtk) {  // vtk/snapshot_*.vtu and run.pvd
     problem.snapshot_directory = out;
@@ -152,9 +161,16 @@ nlohmann::json run_dynamic(const FemArguments& args, const scene::Scene& s, mesh
   std::string energy = "t,kinetic,strain\n";
   for (const auto& e : result.energy) energy += fmt::format("{:.9g},{:.9g},{:.9g}\n", e.t, e.kinetic, e.strain);
   write_output(out / "energy.csv", energy);
-  return {{"kind", "dynamic"}, {"loading", loading}, {"v0", problem.v0}, {"dt", problem.dt}, {"end_time", problem.end_time},
-          {"steps", result.steps}, {"snapshots", result.snapshots.size()}, {"newmark", {{"beta", problem.newmark.beta}, {"gamma", problem.newmark.gamma}}},
-          {"stats", stats_json(result.stats)}, {"step_ms", step_times_json(result)}};
+  return {{"kind", "dynamic"},
+          {"loading", loading},
+          {"v0", problem.v0},
+          {"dt", problem.dt},
+          {"end_time", problem.end_time},
+          {"steps", result.steps},
+          {"snapshots", result.snapshots.size()},
+          {"newmark", {{"beta", problem.newmark.beta}, {"gamma", problem.newmark.gamma}}},
+          {"stats", stats_json(result.stats)},
+          {"step_ms", step_times_json(result)}};
 }
 
 void run_fem(const FemArguments& args) {
@@ -163,13 +179,14 @@ void run_fem(const FemArguments& args) {
   const auto out = output_directory(args.out, s, "fem");
   if (is_root()) std::filesystem::create_directories(out);
   const auto start = std::chrono::steady_clock::now();
-  const double size = args.element_size > 0.0 ? args.element_size : coupling::disc_diameter(s.geometry) / coupling::kFemElementsPerDiameter;
+  const double size = args.element_size > 0.0 ? args.element_size
+                                              : coupling::disc_diameter(s.geometry) / coupling::kFemElementsPerDiameter;
   meshes::Geometry geometry = s.geometry;
   if (auto* flat = std::get_if<meshes::FlattenedDisc>(&geometry)) flat->with_platens = false;
   nlohmann::json summary;
   try {
-    auto mesh = meshes::generate_fem_mesh(
-        geometry, size, args.quads ? meshes::FemCells::Quadrilaterals : meshes::FemCells::Triangles);
+    auto mesh = meshes::generate_fem_mesh(geometry, size,
+                                          args.quads ? meshes::FemCells::Quadrilaterals : meshes::FemCells::Triangles);
     summary = std::holds_alternative<meshes::ImpactDisc>(geometry) ? run_dynamic(args, s, std::move(mesh), out)
                                                                    : run_static(args, s, std::move(mesh), out);
   } catch (const meshes::MeshError& e) {
@@ -189,29 +206,40 @@ void run_fem(const FemArguments& args) {
   write_output(out / "summary.json", summary.dump(2) + "\n");
   if (is_root())
     fmt::print("wrote {} ({} dofs, {:.2f} s)\n", out.string(), summary["stats"]["n_dofs"].get<std::size_t>(),
-             summary["wall_seconds"].get<double>());
+               summary["wall_seconds"].get<double>());
 }
 
 }  // namespace
 
 void register_fem_command(CLI::App& app) {
   auto args = std::make_shared<FemArguments>();
-  CLI::App* command = app.add_subcommand("fem", "deal.II continuum reference of the scene's disc (static or impact dynamics)");
+  CLI::App* command =
+      app.add_subcommand("fem", "deal.II continuum reference of the scene's disc (static or impact dynamics)");
   args->scene.add_to(*command);
   command->add_option("--out", args->out, "output directory (default runs/<scene name>/fem)");
-  command->add_option("--degree", args->degree, "polynomial degree (1 or 2)")->check(CLI::Range(1, 2))->capture_default_str();
-  command->add_option("--refine", args->refine, "uniform refinements of the FEM mesh")->check(CLI::Range(0, 6))->capture_default_str();
+  command->add_option("--degree", args->degree, "polynomial degree (1 or 2)")
+      ->check(CLI::Range(1, 2))
+      ->capture_default_str();
+  command->add_option("--refine", args->refine, "uniform refinements of the FEM mesh")
+      ->check(CLI::Range(0, 6))
+      ->capture_default_str();
   command->add_flag("--quads", args->quads, "quadrilateral cells (FE_Q) instead of triangles (FE_SimplexP)");
   command->add_option("--element-size", args->element_size, "FEM element size in m (default D/25)");
   command->add_option("--load", args->load, "static diametral load in N per m of thickness")->capture_default_str();
-  command->add_option("--arc-half-angle", args->arc_half_angle_deg, "Hondros arc half-angle in degrees when the geometry has no load arcs")->capture_default_str();
+  command
+      ->add_option("--arc-half-angle", args->arc_half_angle_deg,
+                   "Hondros arc half-angle in degrees when the geometry has no load arcs")
+      ->capture_default_str();
   command->add_option("--end-time", args->end_time, "dynamic end time in s (default: the scene's)");
   command->add_option("--dt", args->dt, "dynamic time step in s (default: the scene's dt_max)");
   command->add_option("--pulse", args->pulse_peak,
-                      "dynamic: load the impact patch of a disc at rest by a half-sine pressure pulse of this peak (Pa) instead of holding it");
-  command->add_option("--pulse-duration", args->pulse_duration, "duration of the --pulse half-sine in s (default 4e-6)");
+                      "dynamic: load the impact patch of a disc at rest by a half-sine pressure pulse of this peak "
+                      "(Pa) instead of holding it");
+  command->add_option("--pulse-duration", args->pulse_duration,
+                      "duration of the --pulse half-sine in s (default 4e-6)");
   command->add_option("--snapshot-interval", args->snapshot_interval,
-                      "dynamic VTU snapshot interval in s (default: the scene's output_interval; none if the scene's output.vtk is false)");
+                      "dynamic VTU snapshot interval in s (default: the scene's output_interval; none if the scene's "
+                      "output.vtk is false)");
   command->callback([args] { run_fem(*args); });
 }
 

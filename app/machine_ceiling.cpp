@@ -12,9 +12,9 @@ namespace ddafrac::app {
 
 namespace {
 
-constexpr std::int64_t kChains = 64;               // independent FP chains, split over threads
-constexpr std::int64_t kChainLength = 4'000'000;   // multiply-adds per chain
-constexpr std::size_t kTriadLength = 16'000'000;   // doubles per array: 3 × 128 MB, beyond any cache
+constexpr std::int64_t kChains = 64;              // independent FP chains, split over threads
+constexpr std::int64_t kChainLength = 4'000'000;  // multiply-adds per chain
+constexpr std::size_t kTriadLength = 16'000'000;  // doubles per array: 3 × 128 MB, beyond any cache
 constexpr int kTriadRepeats = 8;
 
 using common::seconds_since;

@@ -1,8 +1,8 @@
 // `ddafrac mesh SCENE [--out DIR]`: the scene's DDA mesh and FEM mesh as gmsh files, a picture,
 // and a quality report.
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 
 #include <chrono>
 #include <filesystem>
@@ -25,9 +25,10 @@ struct MeshArguments {
 };
 
 void print_quality(const char* what, const char* cells, const meshes::QualityReport& q, double seconds) {
-  fmt::print("{:<9} {:>7} {:<6}  min angle {:5.1f}°  mean min angle {:5.1f}°  element size {:.3g} m  "
-             "({} sizing iterations, {:.2f} s)\n",
-             what, q.blocks, cells, q.min_angle_deg, q.mean_min_angle_deg, q.element_size, q.iterations, seconds);
+  fmt::print(
+      "{:<9} {:>7} {:<6}  min angle {:5.1f}°  mean min angle {:5.1f}°  element size {:.3g} m  "
+      "({} sizing iterations, {:.2f} s)\n",
+      what, q.blocks, cells, q.min_angle_deg, q.mean_min_angle_deg, q.element_size, q.iterations, seconds);
 }
 
 void run_mesh(const MeshArguments& args) {

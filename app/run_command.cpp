@@ -2,28 +2,28 @@
 // with a progress bar on a terminal (plain lines otherwise), writing the run directory;
 // `ddafrac run --resume DIR` continues a stopped or killed run from its checkpoint.
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
-#include <nlohmann/json.hpp>
 #include <omp.h>
 #include <unistd.h>
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
-#include <cmath>
 #include <fstream>
 #include <memory>
 #include <optional>
 
 #include "commands.hpp"
-#include "option_checks.hpp"
-#include "figures.hpp"
 #include "ddafrac/common/thread_governor.hpp"
 #include "ddafrac/dda/contact_period.hpp"
 #include "ddafrac/dda/run.hpp"
 #include "ddafrac/scene/parse.hpp"
+#include "figures.hpp"
+#include "option_checks.hpp"
 #include "scene_source.hpp"
 
 namespace ddafrac::app {
@@ -98,8 +98,9 @@ void check_disk_for_snapshots(const scene::Scene& scene, std::size_t blocks, con
   throw CommandFailed(fmt::format(
       "{}: the run would write {:g} VTU snapshots of about {:.1f} MB ({:.0f} MB in all: analysis.output_interval = "
       "{:g} s) but {} has {:.0f} MB free; use a longer output_interval or --no-vtk",
-      scene.source.string(), snapshots, snapshot_bytes / kBytesPerMegabyte, snapshots * snapshot_bytes / kBytesPerMegabyte,
-      scene.analysis.output_interval, out.string(), *available / kBytesPerMegabyte));
+      scene.source.string(), snapshots, snapshot_bytes / kBytesPerMegabyte,
+      snapshots * snapshot_bytes / kBytesPerMegabyte, scene.analysis.output_interval, out.string(),
+      *available / kBytesPerMegabyte));
 }
 
 /// Clears the run directory of a previous run's files (ours only), so no stale snapshot or
@@ -120,7 +121,7 @@ struct RunArguments {
   std::string out;
   int threads = 0;
   bool keep_threads = false;  // no thread governor: exactly --threads whatever the machine's load
-  std::string solver;  // empty: the scene's analysis.solver
+  std::string solver;         // empty: the scene's analysis.solver
   long max_steps = 0;
   bool no_vtk = false;
   bool no_figures = false;
@@ -142,15 +143,15 @@ void show_progress(const dda::Progress& p, bool tty) {
     constexpr int kWidth = 30;
     const int filled = static_cast<int>(frac * kWidth);
     fmt::print(stderr, "\r[{}{}] {:5.1f}%  t {:.4g}/{:.4g} s  step {}  dt {:.3g} s  oc {}  cg {}  ETA {}   ",
-               std::string(static_cast<std::size_t>(filled), '#'), std::string(static_cast<std::size_t>(kWidth - filled), '-'),
-               100.0 * frac, p.time, p.end_time, p.step, p.dt, p.open_close, p.cg_iterations, eta_text(eta));
+               std::string(static_cast<std::size_t>(filled), '#'),
+               std::string(static_cast<std::size_t>(kWidth - filled), '-'), 100.0 * frac, p.time, p.end_time, p.step,
+               p.dt, p.open_close, p.cg_iterations, eta_text(eta));
   } else {
     fmt::print("t = {:.6g} s of {:.6g} s ({:.1f}%), step {}, dt {:.3g} s, open-close {}, cg {}, ETA {}\n", p.time,
                p.end_time, 100.0 * frac, p.step, p.dt, p.open_close, p.cg_iterations, eta_text(eta));
   }
   std::fflush(tty ? stderr : stdout);
 }
-
 
 /// Warns when the longest step is not a small fraction of the shortest contact period: the
 /// blocks would rock and bounce on their contact springs rather than rest on them.
@@ -162,7 +163,8 @@ void warn_if_contacts_are_unresolved(const dda::Engine& engine) {
              "warning: analysis.dt_max = {:.3g} s is {:.2g} steps per period of the stiffest contact spring on the "
              "lightest block (T = 2π·√(m/2 / kn) = {:.3g} s, m = {:.3g} kg/m at ({:.4g}, {:.4g}) m, kn = {:.3g} N/m), "
              "and fewer than {:g} for {} of {} moving blocks: the time scheme does not follow their contact "
-             "oscillations, and such a block resting on a contact rocks and bounces. Lower analysis.dt_max to at most {:.3g} s or the contact stiffness "
+             "oscillations, and such a block resting on a contact rocks and bounces. Lower analysis.dt_max to at most "
+             "{:.3g} s or the contact stiffness "
              "(analysis.penalty, joints.*.normal_stiffness), or mesh without such small blocks\n",
              dt_max, shortest.period / dt_max, shortest.period, shortest.mass, shortest.x, shortest.y,
              shortest.stiffness, dda::kMinStepsPerContactPeriod, shortest.unresolved_blocks, shortest.moving_blocks,
@@ -173,9 +175,12 @@ void warn_if_contacts_are_unresolved(const dda::Engine& engine) {
 std::string invocation_of(const RunArguments& args, const scene::Scene& scene, const std::filesystem::path& out) {
   const std::string scene_file =
       args.scene.scene_file.empty() ? std::string() : std::filesystem::absolute(args.scene.scene_file).string();
-  const nlohmann::json j = {{"scene_file", scene_file},       {"overrides", args.scene.overrides},
-                            {"solver", args.solver},          {"no_vtk", args.no_vtk},
-                            {"out", std::filesystem::absolute(out).string()}, {"scene_text", scene.resolved_text}};
+  const nlohmann::json j = {{"scene_file", scene_file},
+                            {"overrides", args.scene.overrides},
+                            {"solver", args.solver},
+                            {"no_vtk", args.no_vtk},
+                            {"out", std::filesystem::absolute(out).string()},
+                            {"scene_text", scene.resolved_text}};
   return j.dump();
 }
 
@@ -242,7 +247,8 @@ void run_run(const RunArguments& given) {
   const RunArguments args = checkpoint ? resumed_arguments(given, *checkpoint) : given;
   const scene::Scene scene = args.scene.load();
   if (checkpoint) check_scene_unchanged(scene, *checkpoint, given.resume);
-  const std::filesystem::path out = checkpoint ? std::filesystem::path(given.resume) : output_directory(args.out, scene, "run");
+  const std::filesystem::path out =
+      checkpoint ? std::filesystem::path(given.resume) : output_directory(args.out, scene, "run");
   if (args.threads > 0) omp_set_num_threads(args.threads);
   const int threads = omp_get_max_threads();
   // Threads only on the cores other processes leave free, re-measured every few seconds
@@ -267,8 +273,8 @@ void run_run(const RunArguments& given) {
     throw CommandFailed(fmt::format("{}: {}", scene.source.string(), e.what()));
   }
   fmt::print("{}: {} blocks, {} virtual joints, {} thread(s), solver {}, end time {:.4g} s -> {}\n", scene.name,
-             engine->blocks().block_count(), engine->blocks().joints.size(), threads, dda::to_string(options.solver.kind),
-             scene.analysis.end_time, out.string());
+             engine->blocks().block_count(), engine->blocks().joints.size(), threads,
+             dda::to_string(options.solver.kind), scene.analysis.end_time, out.string());
   std::fflush(stdout);
 
   warn_if_contacts_are_unresolved(*engine);
@@ -351,10 +357,10 @@ void run_run(const RunArguments& given) {
     throw CommandFailed(result.message + "; the files written so far are valid", result.exit_status);
   if (result.exit_status == dda::kRunWriteFailed) {
     const bool resumable = std::filesystem::exists(out / dda::kCheckpointFile);
-    throw CommandFailed(result.message + "; every file of " + out.string() + " keeps its last whole version" +
-                            (resumable ? "; free some space and continue with: ddafrac run --resume " + out.string()
-                                       : std::string()),
-                        result.exit_status);
+    throw CommandFailed(
+        result.message + "; every file of " + out.string() + " keeps its last whole version" +
+            (resumable ? "; free some space and continue with: ddafrac run --resume " + out.string() : std::string()),
+        result.exit_status);
   }
   if (result.exit_status != dda::kRunCompleted) throw CommandFailed(result.message, result.exit_status);
 }
@@ -367,30 +373,38 @@ void register_run_command(CLI::App& app) {
   args->scene.add_to(*command);
   CLI::Option* out = command->add_option("--out", args->out, "run directory (default runs/<scene name>/run)");
   CLI::Option* resume =
-      command->add_option("--resume", args->resume,
-                          "continue the run in this directory from its checkpoint, with the scene, --set, --solver "
-                          "and --no-vtk it was started with; the finished files are those of an uninterrupted run")
+      command
+          ->add_option("--resume", args->resume,
+                       "continue the run in this directory from its checkpoint, with the scene, --set, --solver "
+                       "and --no-vtk it was started with; the finished files are those of an uninterrupted run")
           ->type_name("RUN_DIR");
-  command->add_option("--checkpoint-every", args->checkpoint_every,
-                      fmt::format("wall seconds between checkpoints (default {:g}; 0: only when stopped by a signal "
-                                  "or --max-steps)",
-                                  kDefaultCheckpointEvery))
+  command
+      ->add_option("--checkpoint-every", args->checkpoint_every,
+                   fmt::format("wall seconds between checkpoints (default {:g}; 0: only when stopped by a signal "
+                               "or --max-steps)",
+                               kDefaultCheckpointEvery))
       ->check(non_negative_number());
-  command->add_option("--threads", args->threads,
-                      "most OpenMP threads (default: OMP_NUM_THREADS or all cores); fewer while other processes keep "
-                      "cores busy")
+  command
+      ->add_option("--threads", args->threads,
+                   "most OpenMP threads (default: OMP_NUM_THREADS or all cores); fewer while other processes keep "
+                   "cores busy")
       ->check(whole_number(1, kMaxThreads));
   command->add_flag("--keep-threads", args->keep_threads,
                     "use exactly --threads even while other processes keep cores busy");
-  command->add_option("--solver", args->solver, "linear solver: pcg (block-Jacobi PCG) or direct (sparse LDLT); default: the scene's analysis.solver")
+  command
+      ->add_option(
+          "--solver", args->solver,
+          "linear solver: pcg (block-Jacobi PCG) or direct (sparse LDLT); default: the scene's analysis.solver")
       ->check(CLI::IsMember({"pcg", "direct"}));
   command->add_option("--max-steps", args->max_steps, "stop after this many steps (0: run to the end time)")
       ->check(whole_number(0));
   command->add_flag("--no-vtk", args->no_vtk, "skip the VTU snapshots");
-  command->add_option("--energy-tolerance", args->energy_tolerance,
-                      "warn at the end when the energy balance error ever exceeded this fraction (default 0.01)")
+  command
+      ->add_option("--energy-tolerance", args->energy_tolerance,
+                   "warn at the end when the energy balance error ever exceeded this fraction (default 0.01)")
       ->check(positive_number());
-  command->add_flag("--no-figures", args->no_figures, "skip the PNG figures (also skipped when scene.output.figures is false)");
+  command->add_flag("--no-figures", args->no_figures,
+                    "skip the PNG figures (also skipped when scene.output.figures is false)");
   // A resumed run is the run it continues: what decides its results cannot change.
   for (CLI::Option* fixed : {out, command->get_option("scene"), command->get_option("--set"),
                              command->get_option("--solver"), command->get_option("--no-vtk")})

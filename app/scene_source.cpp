@@ -37,10 +37,10 @@ void check_memory_for_blocks(double blocks, const std::string& what) {
   const std::optional<double> available = available_memory();
   const double needed = blocks * kBytesPerBlock;
   if (!available || needed <= *available) return;
-  throw CommandFailed(fmt::format("{}: {:g} blocks need about {:.1f} GB of memory ({:g} kB per block); this machine "
-                                  "has {:.1f} GB available",
-                                  what, blocks, needed / kBytesPerGigabyte, kBytesPerBlock / 1e3,
-                                  *available / kBytesPerGigabyte));
+  throw CommandFailed(
+      fmt::format("{}: {:g} blocks need about {:.1f} GB of memory ({:g} kB per block); this machine "
+                  "has {:.1f} GB available",
+                  what, blocks, needed / kBytesPerGigabyte, kBytesPerBlock / 1e3, *available / kBytesPerGigabyte));
 }
 
 void SceneArguments::add_to(CLI::App& command) {
@@ -78,7 +78,9 @@ meshes::Mesh dda_mesh(const scene::Scene& scene, meshes::QualityReport* quality)
   }
 }
 
-std::filesystem::path default_scene_path() { return std::filesystem::path(DDAFRAC_SOURCE_DIR) / "scenes" / "default.toml"; }
+std::filesystem::path default_scene_path() {
+  return std::filesystem::path(DDAFRAC_SOURCE_DIR) / "scenes" / "default.toml";
+}
 
 std::filesystem::path output_directory(const std::string& out_option, const scene::Scene& scene,
                                        const std::string& command) {

@@ -9,7 +9,8 @@
 namespace ddafrac::app {
 
 void register_study_command(CLI::App& app) {
-  CLI::App* study = app.add_subcommand("study", "studies: stability over stiff and extreme cases (and, with the FEM, convergence)");
+  CLI::App* study =
+      app.add_subcommand("study", "studies: stability over stiff and extreme cases (and, with the FEM, convergence)");
   study->require_subcommand(1);
   register_study_stability(*study);  // study_stability.cpp
   register_study_source(*study);     // study_source.cpp

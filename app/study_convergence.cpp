@@ -4,8 +4,8 @@
 // of error against DDA wall time, and the observed rate (least-squares slope of log error
 // against log h with h ~ 1/sqrt(blocks)).
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -15,11 +15,11 @@
 #include <sstream>
 
 #include "commands.hpp"
-#include "option_checks.hpp"
-#include "fem_session.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/verify.hpp"
+#include "fem_session.hpp"
 #include "figures.hpp"
+#include "option_checks.hpp"
 #include "scene_source.hpp"
 #include "verify_command.hpp"
 
@@ -75,8 +75,8 @@ void run_convergence(const ConvergenceArguments& args) {
   const auto out = output_directory(args.out, base, "convergence");
   std::filesystem::create_directories(out);
   if (args.fem_refine.size() != 1 && args.fem_refine.size() != args.blocks.size())
-    throw CommandFailed(fmt::format("--fem-refine takes one value or one per level ({} levels, {} values)", args.blocks.size(),
-                                    args.fem_refine.size()));
+    throw CommandFailed(fmt::format("--fem-refine takes one value or one per level ({} levels, {} values)",
+                                    args.blocks.size(), args.fem_refine.size()));
   std::vector<Level> levels;
   std::vector<std::string> names;
   for (std::size_t index = 0; index < args.blocks.size(); ++index) {
@@ -123,8 +123,8 @@ void run_convergence(const ConvergenceArguments& args) {
         if (c.what == n) v = std::max(std::isnan(v) ? 0.0 : v, c.value);
       level.errors.push_back(v);
     }
-    fmt::print("  {} blocks, {} steps, DDA {:.2f} s, FEM {:.2f} s, {}\n", level.blocks, level.steps, level.dda_wall, level.fem_wall,
-               level.passed ? "pass" : "fail");
+    fmt::print("  {} blocks, {} steps, DDA {:.2f} s, FEM {:.2f} s, {}\n", level.blocks, level.steps, level.dda_wall,
+               level.fem_wall, level.passed ? "pass" : "fail");
     std::fflush(stdout);
     levels.push_back(level);
   }
@@ -151,34 +151,37 @@ void run_convergence(const ConvergenceArguments& args) {
   for (const auto& n : names) csv << "," << csv_name(n);
   csv << "\n";
   for (const auto& l : levels) {
-    csv << fmt::format("{},{},{},{:.6g},{},{},{:.6g},{:.6g},{}", l.target, l.blocks, l.steps, l.dda_wall, l.fem_refine, l.fem_dofs,
-                       l.fem_wall, l.fem_vs_analytic, l.passed ? 1 : 0);
+    csv << fmt::format("{},{},{},{:.6g},{},{},{:.6g},{:.6g},{}", l.target, l.blocks, l.steps, l.dda_wall, l.fem_refine,
+                       l.fem_dofs, l.fem_wall, l.fem_vs_analytic, l.passed ? 1 : 0);
     for (const double e : l.errors) csv << fmt::format(",{:.6g}", e);
     csv << "\n";
   }
   common::write_whole_text(out / "convergence.csv", csv.str());
 
   std::ostringstream md;
-  md << fmt::format("# Convergence: {}\n\nScene `{}`; DDA kn = {}·E; FEM P{} (refinements per level in the table); {} thread(s).\n\n",
-                    base.name, base.source.string(), args.stiffness_ratio, args.degree, args.threads);
+  md << fmt::format(
+      "# Convergence: {}\n\nScene `{}`; DDA kn = {}·E; FEM P{} (refinements per level in the table); {} thread(s).\n\n",
+      base.name, base.source.string(), args.stiffness_ratio, args.degree, args.threads);
   md << "| blocks | steps | DDA wall (s) | FEM k | FEM dofs | FEM wall (s) | FEM vs analytic |";
   for (const auto& n : names) md << " " << n << " |";
   md << "\n|---|---|---|---|---|---|---|";
   for (std::size_t k = 0; k < names.size(); ++k) md << "---|";
   md << "\n";
   for (const auto& l : levels) {
-    md << fmt::format("| {} | {} | {:.2f} | {} | {} | {:.2f} | {:.4f} |", l.blocks, l.steps, l.dda_wall, l.fem_refine, l.fem_dofs,
-                      l.fem_wall, l.fem_vs_analytic);
+    md << fmt::format("| {} | {} | {:.2f} | {} | {} | {:.2f} | {:.4f} |", l.blocks, l.steps, l.dda_wall, l.fem_refine,
+                      l.fem_dofs, l.fem_wall, l.fem_vs_analytic);
     for (const double e : l.errors) md << fmt::format(" {:.4f} |", e);
     md << "\n";
   }
-  md << "\nObserved rates (least-squares slope of log error against log h, h ~ 1/sqrt(blocks); and against log DDA wall time):\n\n";
+  md << "\nObserved rates (least-squares slope of log error against log h, h ~ 1/sqrt(blocks); and against log DDA "
+        "wall time):\n\n";
   for (std::size_t k = 0; k < names.size(); ++k)
     md << fmt::format("- {}: {:.2f} in h, {:.2f} in wall time\n", names[k], rate_h[k], rate_t[k]);
   md << "\n![error against DDA wall time](convergence.png)\n";
   common::write_whole_text(out / "convergence.md", md.str());
   fmt::print("{}", md.str());
-  if (!args.no_figures) draw_figures({"convergence", (out / "convergence.csv").string(), (out / "convergence.png").string()});
+  if (!args.no_figures)
+    draw_figures({"convergence", (out / "convergence.csv").string(), (out / "convergence.png").string()});
   fmt::print("wrote {}\n", out.string());
 }
 
@@ -187,15 +190,27 @@ void run_convergence(const ConvergenceArguments& args) {
 void register_study_convergence(CLI::App& study) {
   auto args = std::make_shared<ConvergenceArguments>();
   CLI::App* command = study.add_subcommand(
-      "convergence", "the verify comparison at several DDA block counts: error against run time, observed convergence rate");
+      "convergence",
+      "the verify comparison at several DDA block counts: error against run time, observed convergence rate");
   args->scene.add_to(*command);
-  command->add_option("--blocks", args->blocks, "DDA block counts, e.g. 500,1000,2000,4000")->delimiter(',')->capture_default_str();
+  command->add_option("--blocks", args->blocks, "DDA block counts, e.g. 500,1000,2000,4000")
+      ->delimiter(',')
+      ->capture_default_str();
   command->add_option("--out", args->out, "output directory (default runs/<scene name>/convergence)");
-  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")->check(whole_number(1, kMaxThreads))->capture_default_str();
-  command->add_option("--degree", args->degree, "FEM polynomial degree (1 or 2)")->check(CLI::Range(1, 2))->capture_default_str();
-  command->add_option("--fem-refine", args->fem_refine, "uniform refinements of the FEM reference: one value, or one per level (e.g. 0,0,1,1,2)")
-      ->delimiter(',')->check(CLI::Range(0, 5))->capture_default_str();
-  command->add_option("--stiffness-ratio", args->stiffness_ratio, "DDA joint stiffness kn as a multiple of E")->capture_default_str();
+  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")
+      ->check(whole_number(1, kMaxThreads))
+      ->capture_default_str();
+  command->add_option("--degree", args->degree, "FEM polynomial degree (1 or 2)")
+      ->check(CLI::Range(1, 2))
+      ->capture_default_str();
+  command
+      ->add_option("--fem-refine", args->fem_refine,
+                   "uniform refinements of the FEM reference: one value, or one per level (e.g. 0,0,1,1,2)")
+      ->delimiter(',')
+      ->check(CLI::Range(0, 5))
+      ->capture_default_str();
+  command->add_option("--stiffness-ratio", args->stiffness_ratio, "DDA joint stiffness kn as a multiple of E")
+      ->capture_default_str();
   command->add_flag("--no-figures", args->no_figures, "do not draw the PNG plots");
   command->callback([args] { run_convergence(*args); });
 }

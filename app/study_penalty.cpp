@@ -4,8 +4,8 @@
 // P-wave arrival), CG iterations, dt cuts and wall time per pair. Writes penalty_study.csv,
 // penalty_study.md and penalty_study.png in --out.
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "option_checks.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/impact_compare.hpp"
 #include "ddafrac/coupling/impact_runs.hpp"
@@ -26,6 +25,7 @@
 #include "ddafrac/scene/scene.hpp"
 #include "fem_session.hpp"
 #include "figures.hpp"
+#include "option_checks.hpp"
 #include "scene_source.hpp"
 
 namespace ddafrac::app {
@@ -52,9 +52,10 @@ struct Row {
 };
 
 std::string csv_header(const std::vector<std::string>& gauges) {
-  std::string h = "kn_over_E,kn,dt,status,blocks,steps,dt_cuts,cg_total,cg_per_step,cg_max,dda_wall,"
-                  "predicted_arrival_shift,mean_rms_over_peak,max_rms_over_peak,mean_abs_peak_error,"
-                  "max_abs_peak_error,max_abs_arrival_error";
+  std::string h =
+      "kn_over_E,kn,dt,status,blocks,steps,dt_cuts,cg_total,cg_per_step,cg_max,dda_wall,"
+      "predicted_arrival_shift,mean_rms_over_peak,max_rms_over_peak,mean_abs_peak_error,"
+      "max_abs_peak_error,max_abs_arrival_error";
   for (const auto& g : gauges) h += fmt::format(",rms_{0},peak_error_{0},arrival_error_{0}", g);
   return h + "\n";
 }
@@ -63,7 +64,8 @@ std::string csv_header(const std::vector<std::string>& gauges) {
 double predicted_arrival_shift(double ratio) { return 1.0 / std::sqrt(coupling::effective_modulus_ratio(ratio)) - 1.0; }
 
 std::string csv_row(const Row& r) {
-  const double per_step = r.dda.steps > 0 ? static_cast<double>(r.dda.cg_total) / static_cast<double>(r.dda.steps) : 0.0;
+  const double per_step =
+      r.dda.steps > 0 ? static_cast<double>(r.dda.cg_total) / static_cast<double>(r.dda.steps) : 0.0;
   std::string line = fmt::format("{:.6g},{:.6g},{:.3g},{},{},{},{},{},{:.3f},{},{:.3f},{:.6g}", r.ratio, r.dda.kn, r.dt,
                                  r.status, r.dda.blocks, r.dda.steps, r.dda.dt_cuts, r.dda.cg_total, per_step,
                                  r.dda.cg_max, r.dda.wall, predicted_arrival_shift(r.ratio));
@@ -87,12 +89,15 @@ std::string markdown(const scene::Scene& s, const coupling::GaugeHistories& fem,
   md << fmt::format(
       "DDA twin (bonded, unbreakable virtual joints; impact patch held; no gravity) against the FEM reference (P{}, "
       "{} refinement(s), {} dofs, Newmark (¼, ½), dt = {:.3g} s, {:.1f} s). Errors of σyy over the {} gauges; arrival "
-      "(|σyy| at {:.0f}% of ρ c_p v0) checked at the gauges `ddafrac verify` checks; a wave that never arrives counts as "
+      "(|σyy| at {:.0f}% of ρ c_p v0) checked at the gauges `ddafrac verify` checks; a wave that never arrives counts "
+      "as "
       "arriving at the end time. Predicted arrival shift from the joint compliance: sqrt(1 + {:g} E/kn) − 1.\n\n",
       args.fem_degree, args.fem_refine, fem.dofs, fem.dt, fem.wall, fem.names.size(),
       100.0 * coupling::ImpactSettings{}.arrival_fraction, coupling::kJointCompliance);
-  md << "| kn/E | dt (s) | blocks | steps | CG/step | dt cuts | DDA wall (s) | predicted arrival shift | mean RMS/peak | "
-        "max RMS/peak | mean abs peak error | max abs arrival error |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "| kn/E | dt (s) | blocks | steps | CG/step | dt cuts | DDA wall (s) | predicted arrival shift | mean RMS/peak "
+        "| "
+        "max RMS/peak | mean abs peak error | max abs arrival error "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     const double per_step =
         r.dda.steps > 0 ? static_cast<double>(r.dda.cg_total) / static_cast<double>(r.dda.steps) : 0.0;
@@ -102,10 +107,11 @@ std::string markdown(const scene::Scene& s, const coupling::GaugeHistories& fem,
                         100.0 * predicted_arrival_shift(r.ratio), r.status);
       continue;
     }
-    md << fmt::format("| {:.4g} | {:.0e} | {} | {} | {:.1f} | {} | {:.1f} | {:+.1f}% | {:.3f} | {:.3f} | {:.1f}% | {:.1f}% |\n",
-                      r.ratio, r.dt, r.dda.blocks, r.dda.steps, per_step, r.dda.dt_cuts, r.dda.wall,
-                      100.0 * predicted_arrival_shift(r.ratio), r.errors.mean_rms, r.errors.max_rms,
-                      100.0 * r.errors.mean_abs_peak, 100.0 * r.errors.max_abs_arrival);
+    md << fmt::format(
+        "| {:.4g} | {:.0e} | {} | {} | {:.1f} | {} | {:.1f} | {:+.1f}% | {:.3f} | {:.3f} | {:.1f}% | {:.1f}% |\n",
+        r.ratio, r.dt, r.dda.blocks, r.dda.steps, per_step, r.dda.dt_cuts, r.dda.wall,
+        100.0 * predicted_arrival_shift(r.ratio), r.errors.mean_rms, r.errors.max_rms, 100.0 * r.errors.mean_abs_peak,
+        100.0 * r.errors.max_abs_arrival);
   }
   md << "\n![errors, CG iterations and wall time against kn/E](penalty_study.png)\n";
   return md.str();
@@ -147,11 +153,12 @@ void run_penalty_study(const PenaltyArguments& args) {
         r.status = "numerical trouble";
         fmt::print("  kn/E = {:.4g}, dt = {:.0e} s: {}\n", ratio, dt, e.what());
       }
-      fmt::print("  kn/E = {:<8.4g} dt = {:.0e} s: {} steps, {:.1f} CG/step, {:.1f} s, mean RMS/peak {:.3f}, max "
-                 "arrival error {:.1f}%\n",
-                 ratio, dt, r.dda.steps,
-                 r.dda.steps > 0 ? static_cast<double>(r.dda.cg_total) / static_cast<double>(r.dda.steps) : 0.0,
-                 r.dda.wall, r.errors.mean_rms, 100.0 * r.errors.max_abs_arrival);
+      fmt::print(
+          "  kn/E = {:<8.4g} dt = {:.0e} s: {} steps, {:.1f} CG/step, {:.1f} s, mean RMS/peak {:.3f}, max "
+          "arrival error {:.1f}%\n",
+          ratio, dt, r.dda.steps,
+          r.dda.steps > 0 ? static_cast<double>(r.dda.cg_total) / static_cast<double>(r.dda.steps) : 0.0, r.dda.wall,
+          r.errors.mean_rms, 100.0 * r.errors.max_abs_arrival);
       csv += csv_row(r);
       rows.push_back(std::move(r));
       common::write_whole_text(out / "penalty_study.csv", csv);  // after every pair: a stopped study keeps its rows
@@ -173,11 +180,19 @@ void register_study_penalty(CLI::App& study) {
   command->add_option("--kn-ratios", args->kn_ratios, "joint stiffness kn as multiples of E (comma-separated)")
       ->delimiter(',')
       ->capture_default_str();
-  command->add_option("--dts", args->dts, "DDA time steps dt_max in s (comma-separated)")->delimiter(',')->capture_default_str();
+  command->add_option("--dts", args->dts, "DDA time steps dt_max in s (comma-separated)")
+      ->delimiter(',')
+      ->capture_default_str();
   command->add_option("--end-time", args->end_time, "simulated time in s (default: the scene's)");
-  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")->check(whole_number(1, kMaxThreads))->capture_default_str();
-  command->add_option("--fem-degree", args->fem_degree, "FEM polynomial degree")->check(CLI::Range(1, 2))->capture_default_str();
-  command->add_option("--fem-refine", args->fem_refine, "uniform refinements of the FEM mesh")->check(CLI::Range(0, 4))->capture_default_str();
+  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")
+      ->check(whole_number(1, kMaxThreads))
+      ->capture_default_str();
+  command->add_option("--fem-degree", args->fem_degree, "FEM polynomial degree")
+      ->check(CLI::Range(1, 2))
+      ->capture_default_str();
+  command->add_option("--fem-refine", args->fem_refine, "uniform refinements of the FEM mesh")
+      ->check(CLI::Range(0, 4))
+      ->capture_default_str();
   command->add_flag("--no-figures", args->no_figures, "do not draw penalty_study.png");
   command->callback([args] { run_penalty_study(*args); });
 }

@@ -5,11 +5,11 @@
 // The study keeps study.json in DIR (its --set values and, while it runs, its process id), so
 // that --status and --resume know how it was started.
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 #include <signal.h>
 #include <unistd.h>
+#include <CLI/CLI.hpp>
 
 #include <cerrno>
 #include <cstdio>
@@ -135,13 +135,14 @@ std::string status_line(const SourceCase& source, bool study_running) {
                         reason == "completed" ? "its scene changed since" : "stopped with no checkpoint");
   }
   constexpr double kMicroseconds = 1e6;
-  return fmt::format("{:<18} {:<14} {:>7.0f} / {:<7.0f} {:>9.1f}  {}\n", c.scene.name, source.series,
-                     t * kMicroseconds, end * kMicroseconds, wall, state);
+  return fmt::format("{:<18} {:<14} {:>7.0f} / {:<7.0f} {:>9.1f}  {}\n", c.scene.name, source.series, t * kMicroseconds,
+                     end * kMicroseconds, wall, state);
 }
 
 void print_status(const SourceArguments& args) {
   const fs::path out(args.out);
-  if (!fs::exists(out / kStudyFile)) throw CommandFailed(fmt::format("study source --status: {} holds no study (no {})", out.string(), kStudyFile));
+  if (!fs::exists(out / kStudyFile))
+    throw CommandFailed(fmt::format("study source --status: {} holds no study (no {})", out.string(), kStudyFile));
   const json study = read_study_file(out);
   const long pid = study.is_object() ? study.value("pid", 0L) : 0L;
   const bool running = alive(pid);
@@ -168,8 +169,8 @@ void run_study(const SourceArguments& args) {
   const fs::path out(args.out);
   const json previous = read_study_file(out);
   if (previous.is_object() && alive(previous.value("pid", 0L)) && previous.value("pid", 0L) != ::getpid())
-    throw CommandFailed(fmt::format("study source: a study is running in {} (process {}); see --status",
-                                    out.string(), previous.value("pid", 0L)));
+    throw CommandFailed(fmt::format("study source: a study is running in {} (process {}); see --status", out.string(),
+                                    previous.value("pid", 0L)));
   const std::vector<std::string> overrides = args.resume ? study_overrides(args, previous) : args.overrides;
   std::vector<SourceCase> cases = load_study(args, overrides, out);
 
@@ -213,17 +214,21 @@ void register_study_source(CLI::App& study) {
   auto* resume = command->add_flag("--resume", args->resume,
                                    "keep the cases that finished with the scene they have now, continue stopped ones "
                                    "from their checkpoints, run the rest (with the --set values the study began with)");
-  auto* status = command->add_flag("--status", args->status,
-                                   "list the cases as done / running / failed / to do with their run times; run nothing");
+  auto* status = command->add_flag(
+      "--status", args->status, "list the cases as done / running / failed / to do with their run times; run nothing");
   status->excludes(resume);
-  command->add_option("--set", args->overrides, "override a value of every case, e.g. --set mesh.blocks=700 (a reduced study: every scene meshes at 700)")
+  command
+      ->add_option(
+          "--set", args->overrides,
+          "override a value of every case, e.g. --set mesh.blocks=700 (a reduced study: every scene meshes at 700)")
       ->type_name("KEY=VALUE");
   command->add_option("--parallel", args->parallel, "runs at once (default: the cores)")
       ->check(whole_number(1, kMaxParallelRuns))
       ->excludes(status);
   command->add_option("--cases", args->cases, "only these cases (comma-separated scene names)")->delimiter(',');
-  command->add_option("--checkpoint-every", args->checkpoint_every,
-                      "wall seconds between the checkpoints of each run (default: that of ddafrac run)")
+  command
+      ->add_option("--checkpoint-every", args->checkpoint_every,
+                   "wall seconds between the checkpoints of each run (default: that of ddafrac run)")
       ->check(non_negative_number())
       ->excludes(status);
   command->callback([args] { args->status ? print_status(*args) : run_study(*args); });

@@ -43,8 +43,10 @@ std::optional<double> peak_force(const json& summary) {
 std::string table_row(const SourceCase& c) {
   const json s = read_summary(c.run.run_dir);
   if (s.is_discarded()) {
-    const std::string state = c.run.exit_code > 0 ? fmt::format("failed before its first output (exit status {}; "
-                                                                "see its run.log)", c.run.exit_code)
+    const std::string state = c.run.exit_code > 0 ? fmt::format(
+                                                        "failed before its first output (exit status {}; "
+                                                        "see its run.log)",
+                                                        c.run.exit_code)
                                                   : std::string("not run");
     return fmt::format("| {} | {} | {} |{}\n", c.run.scene.name, c.series, state, std::string(14, '|'));
   }
@@ -64,9 +66,9 @@ std::string table_row(const SourceCase& c) {
                      cell(number_at(s, {"steps"}), "{:.0f}"), cell(cuts, "{:.0f}"),
                      cell(number_at(s, {"wall_time", "total"}), "{:.1f}"),
                      cell(number_at(s, {"simulated_time"}), "{:.0f}", kMicrosecondsPerSecond),
-                     cell(number_at(s, {"cracks", "tensile"}), "{:.0f}"), cell(number_at(s, {"cracks", "shear"}), "{:.0f}"),
-                     cell(length, "{:.1f}", kMillimetresPerMetre), cell(number_at(metrics, {"fragments"}), "{:.0f}"),
-                     cell(largest, "{:.1f}", kPercent),
+                     cell(number_at(s, {"cracks", "tensile"}), "{:.0f}"),
+                     cell(number_at(s, {"cracks", "shear"}), "{:.0f}"), cell(length, "{:.1f}", kMillimetresPerMetre),
+                     cell(number_at(metrics, {"fragments"}), "{:.0f}"), cell(largest, "{:.1f}", kPercent),
                      cell(number_at(metrics, {"first_crack_time"}), "{:.1f}", kMicrosecondsPerSecond),
                      cell(number_at(metrics, {"first_through_crack_time"}), "{:.1f}", kMicrosecondsPerSecond),
                      cell(peak_force(s), "{:.2f}", kKilonewtonsPerNewton),
@@ -92,14 +94,16 @@ std::string definitions(const std::vector<SourceCase>& cases) {
 std::string study_markdown(const std::vector<SourceCase>& cases, const std::vector<std::string>& overrides,
                            const std::vector<std::string>& figures) {
   std::string md = "# The source study\n\n";
-  md += fmt::format("Written by `ddafrac study source`{}. Every number below is read from the case's "
-                    "`summary.json`; a case not run yet shows dashes.\n\n",
-                    overrides.empty() ? std::string(" at full size")
-                                      : fmt::format(" with `--set {}`", fmt::join(overrides, " --set ")));
+  md += fmt::format(
+      "Written by `ddafrac study source`{}. Every number below is read from the case's "
+      "`summary.json`; a case not run yet shows dashes.\n\n",
+      overrides.empty() ? std::string(" at full size")
+                        : fmt::format(" with `--set {}`", fmt::join(overrides, " --set ")));
   md += "Crack metrics:\n" + definitions(cases) + "\n";
-  md += "| case | series | blocks | steps | dt cuts | wall (s) | t end (µs) | cracks tensile / shear | crack length (mm) "
-        "| fragments | largest fragment (%) | first crack (µs) | through crack (µs) | peak force (kN/m) "
-        "| largest energy-balance error (%) | missed contacts | exit |\n";
+  md +=
+      "| case | series | blocks | steps | dt cuts | wall (s) | t end (µs) | cracks tensile / shear | crack length (mm) "
+      "| fragments | largest fragment (%) | first crack (µs) | through crack (µs) | peak force (kN/m) "
+      "| largest energy-balance error (%) | missed contacts | exit |\n";
   md += "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
   for (const SourceCase& c : cases) md += table_row(c);
   if (!figures.empty()) {
@@ -114,8 +118,8 @@ std::string study_csv(const std::vector<SourceCase>& cases, const fs::path& out)
   for (const SourceCase& c : cases) {
     const json s = read_summary(c.run.run_dir);
     const std::string reason = !s.is_discarded() && s.contains("exit") ? s["exit"].value("reason", "") : "";
-    csv += fmt::format("{},{},{},{}\n", c.run.scene.name, c.series, csv_field(fs::relative(c.run.run_dir, out).string()),
-                       reason);
+    csv += fmt::format("{},{},{},{}\n", c.run.scene.name, c.series,
+                       csv_field(fs::relative(c.run.run_dir, out).string()), reason);
   }
   return csv;
 }

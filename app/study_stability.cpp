@@ -4,9 +4,9 @@
 // stability.md whole. Exit status 0 when every case ends as expected (the impossible one failing
 // cleanly with its message), 1 otherwise.
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <omp.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "option_checks.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/stability.hpp"
+#include "option_checks.hpp"
 
 namespace ddafrac::app {
 
@@ -69,11 +69,12 @@ void run_study_stability(const StabilityArguments& args) {
     };
     results.push_back(coupling::run_stability_case(c, scenes, progress));
     const auto& r = results.back();
-    fmt::print("      {} blocks, {} steps, end {}, E/S max {:.3f}, penetration {:.2g} of {:.2g} m, cuts {}/{}/{}, "
-               "{:.1f} s: {}{}\n",
-               r.blocks, r.steps, r.end_reached ? "reached" : "not reached", r.energy_ratio, r.penetration_max,
-               r.penetration_allowed, r.cuts_displacement, r.cuts_open_close, r.cuts_solver, r.wall, r.verdict_text,
-               r.as_expected ? "" : "  <- NOT AS EXPECTED");
+    fmt::print(
+        "      {} blocks, {} steps, end {}, E/S max {:.3f}, penetration {:.2g} of {:.2g} m, cuts {}/{}/{}, "
+        "{:.1f} s: {}{}\n",
+        r.blocks, r.steps, r.end_reached ? "reached" : "not reached", r.energy_ratio, r.penetration_max,
+        r.penetration_allowed, r.cuts_displacement, r.cuts_open_close, r.cuts_solver, r.wall, r.verdict_text,
+        r.as_expected ? "" : "  <- NOT AS EXPECTED");
     if (r.exit_status != 0) fmt::print("      {}\n", r.message);
     std::fflush(stdout);
     write_tables();  // after every case: an interrupted study leaves the cases done so far

@@ -4,8 +4,8 @@
 // With --resume, finished cases are kept and stopped or killed ones continue from their
 // checkpoints.
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -18,13 +18,13 @@
 
 #include "case_runs.hpp"
 #include "commands.hpp"
-#include "option_checks.hpp"
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/dda/drive.hpp"
 #include "ddafrac/scene/parse.hpp"
 #include "ddafrac/scene/sweep.hpp"
 #include "figures.hpp"
-#include "ddafrac/common/angles.hpp"
+#include "option_checks.hpp"
 
 namespace ddafrac::app {
 
@@ -39,7 +39,7 @@ struct SweepArguments {
   std::string out;
   int parallel = 0;
   std::vector<std::string> overrides;
-  bool resume = false;  // keep finished cases, continue stopped ones from their checkpoints
+  bool resume = false;                     // keep finished cases, continue stopped ones from their checkpoints
   std::optional<double> checkpoint_every;  // s, passed on to every run (default: run's own)
 };
 
@@ -82,7 +82,8 @@ Cracks cracks_at(const fs::path& history, double t) {
 }
 
 std::string table_csv(const std::vector<CaseRun>& cases, const std::vector<Cracks>& cracks_of, const fs::path& out) {
-  std::string csv = "case,scene,theta_deg,gamma,v0,cracks_total,cracks_tensile,cracks_shear,run_time_s,exit_status,run_dir\n";
+  std::string csv =
+      "case,scene,theta_deg,gamma,v0,cracks_total,cracks_tensile,cracks_shear,run_time_s,exit_status,run_dir\n";
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const CaseRun& c = cases[k];
     const Cracks& n = cracks_of[k];
@@ -125,7 +126,7 @@ void run_sweep(const SweepArguments& args) {
   std::vector<CaseRun> cases = load_case_runs(sweep.cases, overrides, out, "the sweep's cases");
 
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int parallel = args.parallel > 0 ? args.parallel
+  const int parallel = args.parallel > 0    ? args.parallel
                        : sweep.parallel > 0 ? sweep.parallel
                                             : std::max(1, cores / sweep.threads);
   fmt::print("sweep {}: {} cases, {} at a time, {} thread(s) each, into {}\n", sweep.name, cases.size(), parallel,
@@ -159,8 +160,9 @@ void register_sweep_command(CLI::App& app) {
       ->check(whole_number(1, kMaxParallelRuns));
   command->add_option("--set", args->overrides, "override a value of every case, e.g. --set mesh.blocks=1200")
       ->type_name("KEY=VALUE");
-  command->add_option("--checkpoint-every", args->checkpoint_every,
-                      "wall seconds between the checkpoints of each run (default: that of ddafrac run)")
+  command
+      ->add_option("--checkpoint-every", args->checkpoint_every,
+                   "wall seconds between the checkpoints of each run (default: that of ddafrac run)")
       ->check(non_negative_number());
   command->add_flag("--resume", args->resume,
                     "keep the cases that finished with the scene they have now, continue stopped or killed ones from "

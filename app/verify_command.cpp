@@ -6,8 +6,8 @@
 
 #include "verify_command.hpp"
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -18,11 +18,11 @@
 #include <sstream>
 
 #include "commands.hpp"
-#include "option_checks.hpp"
-#include "fem_session.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/verify.hpp"
+#include "fem_session.hpp"
 #include "figures.hpp"
+#include "option_checks.hpp"
 #include "scene_source.hpp"
 
 namespace ddafrac::app {
@@ -58,7 +58,8 @@ void run_verify(const VerifyArguments& args) {
   options.figures = !args.no_figures;
   const auto report = verify_and_report(s, options);
   if (!report.passed())
-    throw CommandFailed(fmt::format("verification FAILED ({}): see {}", s.name, (options.out_dir / "verification.md").string()), 1);
+    throw CommandFailed(
+        fmt::format("verification FAILED ({}): see {}", s.name, (options.out_dir / "verification.md").string()), 1);
 }
 
 }  // namespace
@@ -68,9 +69,10 @@ coupling::VerificationReport verify_and_report(const scene::Scene& s, const coup
   if (!missing.empty()) {
     std::string list;
     for (const auto& m : missing) list += (list.empty() ? "" : ", ") + m;
-    throw CommandFailed(fmt::format("{}: cannot verify this scene: it does not set {} (add a [verification] table with the "
-                                    "tolerances; see README, Scene files)",
-                                    s.source.empty() ? s.name : s.source.string(), list));
+    throw CommandFailed(
+        fmt::format("{}: cannot verify this scene: it does not set {} (add a [verification] table with the "
+                    "tolerances; see README, Scene files)",
+                    s.source.empty() ? s.name : s.source.string(), list));
   }
   std::filesystem::create_directories(options.out_dir);
   coupling::VerificationReport report;
@@ -86,12 +88,15 @@ coupling::VerificationReport verify_and_report(const scene::Scene& s, const coup
 
   std::ostringstream md;
   md << "# Verification: " << s.name << "\n\n";
-  md << fmt::format("Scene `{}`{}; ddafrac {}, {}; {} DDA thread(s) (results do not depend on it).\n\n", s.source.string(),
-                    s.description.empty() ? "" : " — " + s.description, DDAFRAC_VERSION, utc_now(), options.threads);
+  md << fmt::format("Scene `{}`{}; ddafrac {}, {}; {} DDA thread(s) (results do not depend on it).\n\n",
+                    s.source.string(), s.description.empty() ? "" : " — " + s.description, DDAFRAC_VERSION, utc_now(),
+                    options.threads);
   md << fmt::format("Run times: DDA {:.2f} s, FEM {:.2f} s.\n\n", report.dda_wall, report.fem_wall);
   md << report.markdown;
-  if (options.figures && !figures) md << "(The PNG figures could not be drawn: matplotlib missing; the CSV files are complete.)\n\n";
-  md << "## Checks (tolerances from the scene's [verification] table)\n\n| check | measured | tolerance | key | |\n|---|---|---|---|---|\n";
+  if (options.figures && !figures)
+    md << "(The PNG figures could not be drawn: matplotlib missing; the CSV files are complete.)\n\n";
+  md << "## Checks (tolerances from the scene's [verification] table)\n\n| check | measured | tolerance | key | "
+        "|\n|---|---|---|---|---|\n";
   for (const auto& c : report.checks)
     md << fmt::format("| {} | {:.4g} | {:.4g} | `verification.{}` | {} |\n", c.what, c.value, c.tolerance, c.key,
                       c.passed() ? "pass" : "**FAIL**");
@@ -116,7 +121,8 @@ coupling::VerificationReport verify_and_report(const scene::Scene& s, const coup
                          {"passed", report.passed()}};
   summary["checks"] = nlohmann::json::array();
   for (const auto& c : report.checks)
-    summary["checks"].push_back({{"what", c.what}, {"key", c.key}, {"value", c.value}, {"tolerance", c.tolerance}, {"passed", c.passed()}});
+    summary["checks"].push_back(
+        {{"what", c.what}, {"key", c.key}, {"value", c.value}, {"tolerance", c.tolerance}, {"passed", c.passed()}});
   const auto comparison = options.out_dir / "comparison.json";
   if (std::filesystem::exists(comparison)) {
     std::ifstream in(comparison);
@@ -132,14 +138,24 @@ coupling::VerificationReport verify_and_report(const scene::Scene& s, const coup
 
 void register_verify_command(CLI::App& app) {
   auto args = std::make_shared<VerifyArguments>();
-  CLI::App* command = app.add_subcommand(
-      "verify", "DDA (bonded, unbreakable joints) vs FEM (and analytic) on the scene; PASS/FAIL against its [verification] tolerances");
+  CLI::App* command = app.add_subcommand("verify",
+                                         "DDA (bonded, unbreakable joints) vs FEM (and analytic) on the scene; "
+                                         "PASS/FAIL against its [verification] tolerances");
   args->scene.add_to(*command);
   command->add_option("--out", args->out, "output directory (default runs/<scene name>/verify)");
-  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")->check(whole_number(1, kMaxThreads))->capture_default_str();
-  command->add_option("--degree", args->degree, "FEM polynomial degree (1 or 2)")->check(CLI::Range(1, 2))->capture_default_str();
-  command->add_option("--refine", args->refine, "uniform refinements of the FEM mesh (element size D/25)")->check(CLI::Range(0, 5))->capture_default_str();
-  command->add_option("--stiffness-ratio", args->stiffness_ratio, "DDA joint stiffness kn as a multiple of E (each joint set keeps its ks/kn); <= 0 keeps the scene's")->capture_default_str();
+  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")
+      ->check(whole_number(1, kMaxThreads))
+      ->capture_default_str();
+  command->add_option("--degree", args->degree, "FEM polynomial degree (1 or 2)")
+      ->check(CLI::Range(1, 2))
+      ->capture_default_str();
+  command->add_option("--refine", args->refine, "uniform refinements of the FEM mesh (element size D/25)")
+      ->check(CLI::Range(0, 5))
+      ->capture_default_str();
+  command
+      ->add_option("--stiffness-ratio", args->stiffness_ratio,
+                   "DDA joint stiffness kn as a multiple of E (each joint set keeps its ks/kn); <= 0 keeps the scene's")
+      ->capture_default_str();
   command->add_flag("--no-figures", args->no_figures, "do not draw the PNG plots");
   command->callback([args] { run_verify(*args); });
 }

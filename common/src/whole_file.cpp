@@ -62,7 +62,8 @@ std::string write_failure(const std::filesystem::path& target, std::size_t bytes
     return fmt::format("cannot write {}: the disk is full ({} MB free, the file needs {:.1f} MB)", target.string(),
                        free_before ? fmt::format("{:.1f}", static_cast<double>(*free_before) / kBytesPerMegabyte) : "?",
                        static_cast<double>(bytes) / kBytesPerMegabyte);
-  return fmt::format("cannot write {}: {}", target.string(), error_number != 0 ? std::strerror(error_number) : "write failed");
+  return fmt::format("cannot write {}: {}", target.string(),
+                     error_number != 0 ? std::strerror(error_number) : "write failed");
 }
 
 }  // namespace

@@ -28,8 +28,7 @@ Mat3 elastic_matrix(double young, double poisson, scene::PlaneModel plane) {
     e << c, c * nu, 0.0, c * nu, c, 0.0, 0.0, 0.0, c * 0.5 * (1.0 - nu);
   } else {
     const double c = young / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    e << c * (1.0 - nu), c * nu, 0.0, c * nu, c * (1.0 - nu), 0.0, 0.0, 0.0,
-        c * 0.5 * (1.0 - 2.0 * nu);
+    e << c * (1.0 - nu), c * nu, 0.0, c * nu, c * (1.0 - nu), 0.0, 0.0, 0.0, c * 0.5 * (1.0 - 2.0 * nu);
   }
   return e;
 }
@@ -53,8 +52,7 @@ void update_block_geometry(BlockSystem& blocks) {
     const auto bb = static_cast<std::size_t>(b);
     const Index v0 = blocks.begin(bb);
     const Index nv = blocks.end(bb) - v0;
-    blocks.geometry[bb] = polygon_integrals(blocks.vx.data() + v0, blocks.vy.data() + v0,
-                                            static_cast<std::size_t>(nv));
+    blocks.geometry[bb] = polygon_integrals(blocks.vx.data() + v0, blocks.vy.data() + v0, static_cast<std::size_t>(nv));
     double m = INFINITY;
     for (Index k = 0; k < nv; ++k) {
       const Index a = v0 + k;
@@ -66,9 +64,8 @@ void update_block_geometry(BlockSystem& blocks) {
   }
 }
 
-BlockSystem build_block_system(const scene::Scene& scene, const meshes::Mesh& mesh,
-                               bool bond_virtual_joints, const std::vector<PointLoad>& extra_loads,
-                               const std::vector<Anchor>& extra_anchors) {
+BlockSystem build_block_system(const scene::Scene& scene, const meshes::Mesh& mesh, bool bond_virtual_joints,
+                               const std::vector<PointLoad>& extra_loads, const std::vector<Anchor>& extra_anchors) {
   if (scene.materials.empty()) throw std::invalid_argument("the scene defines no material");
   BlockSystem s;
   const std::size_t nb = mesh.cell_count();
@@ -197,15 +194,16 @@ BlockSystem build_block_system(const scene::Scene& scene, const meshes::Mesh& me
       j.node_a = p.lo;
       j.node_b = p.hi;
       j.length = std::hypot(mesh.nodes[p.hi].x - mesh.nodes[p.lo].x, mesh.nodes[p.hi].y - mesh.nodes[p.lo].y);
-      j.joint_set = static_cast<Index>(*scene.bodies[static_cast<std::size_t>(s.body[static_cast<std::size_t>(p.block)])].virtual_joints);
+      j.joint_set = static_cast<Index>(
+          *scene.bodies[static_cast<std::size_t>(s.body[static_cast<std::size_t>(p.block)])].virtual_joints);
       s.joints.push_back(j);
     }
     std::sort(s.joints.begin(), s.joints.end(), [](const Joint& p, const Joint& q) {
-      return std::tie(p.block_a, p.block_b, p.node_a, p.node_b) <
-             std::tie(q.block_a, q.block_b, q.node_a, q.node_b);
+      return std::tie(p.block_a, p.block_b, p.node_a, p.node_b) < std::tie(q.block_a, q.block_b, q.node_a, q.node_b);
     });
     for (Joint& j : s.joints)
-      for (Index v = s.begin(static_cast<std::size_t>(j.block_a)); v < s.end(static_cast<std::size_t>(j.block_a)); ++v) {
+      for (Index v = s.begin(static_cast<std::size_t>(j.block_a)); v < s.end(static_cast<std::size_t>(j.block_a));
+           ++v) {
         if (s.vertex_node[static_cast<std::size_t>(v)] == j.node_a) j.vertex_a = v;
         if (s.vertex_node[static_cast<std::size_t>(v)] == j.node_b) j.vertex_b = v;
       }

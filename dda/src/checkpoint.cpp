@@ -1,10 +1,10 @@
 #include "ddafrac/dda/checkpoint.hpp"
 
+#include <fmt/core.h>
 #include <boost/archive/archive_exception.hpp>
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
 #include <boost/serialization/string.hpp>
-#include <fmt/core.h>
 
 #include <fstream>
 #include <sstream>
@@ -49,9 +49,10 @@ Checkpoint read_checkpoint(const std::filesystem::path& run_dir) {
   const std::filesystem::path file = run_dir / kCheckpointFile;
   std::ifstream in(file, std::ios::binary);
   if (!in)
-    throw CheckpointError(fmt::format("{}: no checkpoint to resume from (a run writes one every --checkpoint-every "
-                                      "seconds and when it is interrupted)",
-                                      file.string()));
+    throw CheckpointError(
+        fmt::format("{}: no checkpoint to resume from (a run writes one every --checkpoint-every "
+                    "seconds and when it is interrupted)",
+                    file.string()));
   Checkpoint c;
   std::string magic;
   int format = 0;

@@ -60,8 +60,7 @@ double wedge_gap(const View& w, Index va, Index vb) {
 
 using Candidate = ContactCandidate;
 
-Index find_joint(const BlockSystem& s, Index p, Index q, meshes::Index nv, meshes::Index n2,
-                 meshes::Index n3) {
+Index find_joint(const BlockSystem& s, Index p, Index q, meshes::Index nv, meshes::Index n2, meshes::Index n3) {
   if (s.joints.empty()) return -1;
   if (nv != n2 && nv != n3) return -1;
   const Index lo = std::min(p, q), hi = std::max(p, q);
@@ -134,8 +133,8 @@ bool was_closed_against(const View& w, Index vblock, Index v, Index eblock, Inde
 }
 
 /// Narrow phase of one block pair a < b; appends at most one contact per vertex.
-void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm,
-                  std::vector<Candidate>& best, std::vector<char>& skip, std::vector<Candidate>& out) {
+void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, std::vector<Candidate>& best,
+                  std::vector<char>& skip, std::vector<Candidate>& out) {
   const BlockSystem& s = w.s;
   const DetectionWorkspace& ws = w.w;
   const Index na = s.end(a) - s.begin(a);
@@ -390,7 +389,8 @@ void overlapping_boxes(const BlockBoxes& box, DetectionWorkspace& work, std::vec
       cell_range(b, i0, i1, j0, j1);
       for (std::int64_t j = j0; j <= j1; ++j)
         for (std::int64_t i = i0; i <= i1; ++i)
-          work.cell_blocks[static_cast<std::size_t>(fill[static_cast<std::size_t>(j * gnx + i)]++)] = static_cast<Index>(b);
+          work.cell_blocks[static_cast<std::size_t>(fill[static_cast<std::size_t>(j * gnx + i)]++)] =
+              static_cast<Index>(b);
     }
   }
   partners.resize(n);
@@ -491,7 +491,8 @@ void build_pair_list(const View& w, const DetectionParams& prm, DetectionWorkspa
 #pragma omp parallel for schedule(dynamic, 32)
   for (std::int64_t b = 0; b < n; ++b) {
     auto& list = work.pairs[b];
-    list.erase(std::remove_if(list.begin(), list.end(), [&](Index o) { return !may_touch(w, static_cast<Index>(b), o, reach); }),
+    list.erase(std::remove_if(list.begin(), list.end(),
+                              [&](Index o) { return !may_touch(w, static_cast<Index>(b), o, reach); }),
                list.end());
   }
   work.built_x = s.vx;
@@ -546,7 +547,6 @@ void detect_contacts(const BlockSystem& s, const DetectionParams& prm, Detection
 
 namespace {
 
-
 /// The previous contact of the same pair at the same corner with the roles of vertex and edge
 /// swapped, or null: the angle rules may pick the other reference line of a vertex-vertex
 /// contact as the blocks move, and a vertex-vertex contact whose vertices drift apart becomes a
@@ -570,8 +570,9 @@ const Contact* swapped_corner(const std::vector<Contact>& previous, const Contac
 }  // namespace
 
 std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& previous,
-                                                 const ContactsByVertex& previous_by_vertex, std::vector<Contact>& current,
-                                                 const std::vector<Joint>& joints, const BlockSystem& blocks) {
+                                                 const ContactsByVertex& previous_by_vertex,
+                                                 std::vector<Contact>& current, const std::vector<Joint>& joints,
+                                                 const BlockSystem& blocks) {
   const auto n = static_cast<std::int64_t>(current.size());
   std::vector<std::uint8_t> carried(previous.size(), 0);
 #pragma omp parallel for schedule(static)
@@ -632,7 +633,8 @@ void build_contact_topology(ContactSet& set, std::size_t nb) {
   }
   if (!set.pairs.empty()) set.pairs.back().last = static_cast<Index>(nc);
   // Per block, ascending: a contact or pair is listed under its low block, then its high block.
-  auto by_block = [nb](std::size_t count, auto block_a, auto block_b, std::vector<Index>& offsets, std::vector<Index>& items) {
+  auto by_block = [nb](std::size_t count, auto block_a, auto block_b, std::vector<Index>& offsets,
+                       std::vector<Index>& items) {
     offsets.assign(nb + 1, 0);
     for (std::size_t k = 0; k < count; ++k) {
       ++offsets[static_cast<std::size_t>(block_a(k)) + 1];

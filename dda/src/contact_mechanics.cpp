@@ -6,8 +6,7 @@
 
 namespace ddafrac::dda {
 
-void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem& blocks,
-                               const scene::Scene& scene) {
+void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem& blocks, const scene::Scene& scene) {
   const auto n = static_cast<std::int64_t>(contacts.size());
   std::vector<double> tan_phi;  // per joint set
   for (const scene::JointSet& js : scene.joint_sets) tan_phi.push_back(std::tan(js.friction_angle));
@@ -84,8 +83,7 @@ void linearise_contact(Contact& c, const BlockSystem& s) {
   const Mat26 t2 = displacement_matrix(gj.cx, gj.cy, x2, y2);
   const Mat26 t3 = displacement_matrix(gj.cx, gj.cy, x3, y3);
   c.e = ((y3 - y2) * ti.row(0) + (x2 - x3) * ti.row(1)).transpose() / l;
-  c.g = ((y1 - y3) * t2.row(0) + (x3 - x1) * t2.row(1) + (y2 - y1) * t3.row(0) + (x1 - x2) * t3.row(1))
-            .transpose() / l;
+  c.g = ((y1 - y3) * t2.row(0) + (x3 - x1) * t2.row(1) + (y2 - y1) * t3.row(0) + (x1 - x2) * t3.row(1)).transpose() / l;
   // d = N / l: the edge length also varies, ∂l = u·(∂P3 − ∂P2), giving −(d0/l)·∂l.
   c.g -= (c.d0 / l) * (ux * (t3.row(0) - t2.row(0)) + uy * (t3.row(1) - t2.row(1))).transpose();
   c.es = (ux * ti.row(0) + uy * ti.row(1)).transpose();

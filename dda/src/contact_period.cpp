@@ -13,7 +13,8 @@ ContactPeriod shortest_contact_period(const Engine& engine, double dt) {
   const scene::Scene& scene = engine.scene();
   ContactPeriod out;
   out.stiffness = scene.analysis.penalty;
-  for (const scene::JointSet& joints : scene.joint_sets) out.stiffness = std::max(out.stiffness, joints.normal_stiffness);
+  for (const scene::JointSet& joints : scene.joint_sets)
+    out.stiffness = std::max(out.stiffness, joints.normal_stiffness);
   if (out.stiffness <= 0.0) return out;
   constexpr double kReducedMassFraction = 0.5;  // two equal blocks on one spring
   auto period_of = [&](double mass) {

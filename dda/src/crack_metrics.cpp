@@ -10,7 +10,7 @@ namespace ddafrac::dda {
 namespace {
 
 constexpr double kNever = std::numeric_limits<double>::infinity();  // an intact joint's break time
-constexpr double kFromStart = -kNever;  // a joint broken with no crack event
+constexpr double kFromStart = -kNever;                              // a joint broken with no crack event
 
 /// Union–find over the blocks: a fragment is a root with the area of all its blocks. Joining two
 /// fragments updates their body's tallies. The smaller block index stays the root, so the result
@@ -133,7 +133,9 @@ CrackHistory crack_history(const BlockSystem& blocks, const std::vector<CrackEve
   std::vector<std::size_t> order(events.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return events[a].t < events[b].t; });
-  const auto event_joint = [&](std::size_t p) { return blocks.joints[static_cast<std::size_t>(events[order[p]].joint)]; };
+  const auto event_joint = [&](std::size_t p) {
+    return blocks.joints[static_cast<std::size_t>(events[order[p]].joint)];
+  };
 
   h.first_crack.assign(jointed.size(), std::nullopt);
   h.first_through_crack.assign(jointed.size(), std::nullopt);
@@ -179,7 +181,7 @@ CrackHistory crack_history(const BlockSystem& blocks, const std::vector<CrackEve
     for (std::size_t k = 0; k < blocks.joints.size(); ++k)
       if (broken_at[k] == kNever) fragments.join(blocks.joints[k].block_a, blocks.joints[k].block_b);
     copy_fragment_tallies(state, h.now);
-    std::size_t s = by_time.size();  // requested times not yet recorded: by_time[0 .. s)
+    std::size_t s = by_time.size();           // requested times not yet recorded: by_time[0 .. s)
     const auto record_from = [&](double t) {  // the state holds for the requested times ≥ t
       for (; s > 0 && times[by_time[s - 1]] >= t; --s) copy_fragment_tallies(state, h.at_times[by_time[s - 1]]);
     };
@@ -189,7 +191,8 @@ CrackHistory crack_history(const BlockSystem& blocks, const std::vector<CrackEve
       record_from(t);
       for (std::size_t k = 0; k < state.size(); ++k)
         if (state[k].through_fragments >= 2) h.first_through_crack[k] = t;
-      for (; p > 0 && events[order[p - 1]].t == t; --p) fragments.join(event_joint(p - 1).block_a, event_joint(p - 1).block_b);
+      for (; p > 0 && events[order[p - 1]].t == t; --p)
+        fragments.join(event_joint(p - 1).block_a, event_joint(p - 1).block_b);
     }
     record_from(-kNever);
     for (std::size_t k = 0; k < state.size(); ++k)

@@ -57,9 +57,10 @@ Engine::Engine(scene::Scene scene, const meshes::Mesh& mesh, EngineOptions optio
   for (const auto& gauge : scene_.gauges) {
     const Index b = find_block(blocks_, gauge.position[0], gauge.position[1]);
     if (b < 0)
-      throw std::invalid_argument(fmt::format("gauge '{}' at ({:.6g}, {:.6g}) m lies in no block at t = 0 (outside "
-                                              "the bodies or in a slot)",
-                                              gauge.name, gauge.position[0], gauge.position[1]));
+      throw std::invalid_argument(
+          fmt::format("gauge '{}' at ({:.6g}, {:.6g}) m lies in no block at t = 0 (outside "
+                      "the bodies or in a slot)",
+                      gauge.name, gauge.position[0], gauge.position[1]));
     gauge_blocks_.push_back(b);
   }
   const auto& an = scene_.analysis;
@@ -68,7 +69,8 @@ Engine::Engine(scene::Scene scene, const meshes::Mesh& mesh, EngineOptions optio
   dt_prev_ = dt_;
   allowed_ = options_.allowed_displacement > 0.0 ? options_.allowed_displacement
                                                  : an.max_displacement_ratio * blocks_.model_half_height;
-  if (!(allowed_ > 0.0)) throw std::invalid_argument("allowed step displacement must be positive (max_displacement_ratio)");
+  if (!(allowed_ > 0.0))
+    throw std::invalid_argument("allowed step displacement must be positive (max_displacement_ratio)");
   options_.detection.search_distance = an.search_distance_factor * allowed_;
   options_.detection.skin = an.pair_list_skin_factor * options_.detection.search_distance;
   if (!(an.penalty > 0.0)) throw std::invalid_argument("analysis.penalty must be positive");
@@ -96,21 +98,22 @@ std::string Engine::describe_block(Index b) const {
 std::string Engine::describe_contact(Index k) const {
   if (k < 0) return "no contact";
   const Contact& c = set_.contacts[k];
-  return fmt::format("contact {} (vertex of block {} at ({:.6g}, {:.6g}) m against an edge of block {}, gap {:.3g} m, {} -> {})", k,
-                     c.vblock, blocks_.vx[c.vertex], blocks_.vy[c.vertex], c.eblock, c.d_iter,
-                     to_string(c.state), to_string(c.trial));
+  return fmt::format(
+      "contact {} (vertex of block {} at ({:.6g}, {:.6g}) m against an edge of block {}, gap {:.3g} m, {} -> {})", k,
+      c.vblock, blocks_.vx[c.vertex], blocks_.vy[c.vertex], c.eblock, c.d_iter, to_string(c.state), to_string(c.trial));
 }
 
 void Engine::trouble(const std::string& what) const {
-  throw NumericalTrouble(fmt::format("numerical trouble at step {}, t = {:.9g} s, dt = {:.3g} s: {}", step_ + 1,
-                                     time_, dt_, what));
+  throw NumericalTrouble(
+      fmt::format("numerical trouble at step {}, t = {:.9g} s, dt = {:.3g} s: {}", step_ + 1, time_, dt_, what));
 }
 
 void Engine::detect() {
   std::vector<Contact>& found = spare_contacts_;  // the list of the step before last: storage reused
   detect_contacts(blocks_, options_.detection, detection_, set_.contacts, found);
   stats_.pair_list_builds = detection_.pair_list_builds;
-  const std::vector<std::uint8_t> carried = transfer_contact_state(set_.contacts, detection_.previous_by_vertex, found, blocks_.joints, blocks_);
+  const std::vector<std::uint8_t> carried =
+      transfer_contact_state(set_.contacts, detection_.previous_by_vertex, found, blocks_.joints, blocks_);
   ledger_.total += chunked_sum<StepEnergy>(static_cast<std::int64_t>(carried.size()), [&](std::int64_t k) {
     const Contact& vanished = set_.contacts[k];
     return carried[k] ? StepEnergy{} : released_energy(vanished, vanished.bonded(blocks_.joints));
@@ -204,7 +207,8 @@ void Engine::accept(double dt) {
   for (std::int64_t i = 0; i < n; ++i) {
     const Vec6& d = d_[i];
     const PolygonIntegrals& g = blocks_.geometry[i];
-    for (Index v = blocks_.begin(i); v < blocks_.end(i); ++v) displace_point(g.cx, g.cy, d, blocks_.vx[v], blocks_.vy[v]);
+    for (Index v = blocks_.begin(i); v < blocks_.end(i); ++v)
+      displace_point(g.cx, g.cy, d, blocks_.vx[v], blocks_.vy[v]);
     for (Index l = blocks_.load_offsets[i]; l < blocks_.load_offsets[i + 1]; ++l) {
       PointLoad& p = blocks_.loads[static_cast<std::size_t>(l)];
       displace_point(g.cx, g.cy, d, p.x, p.y);
@@ -305,14 +309,18 @@ StepReport Engine::step(double max_dt) {
       }
     }
     if (!converged) {
-      if (solver_ok) ++stats_.cuts_open_close; else ++stats_.cuts_solver;
+      if (solver_ok)
+        ++stats_.cuts_open_close;
+      else
+        ++stats_.cuts_solver;
       ++cuts;
       dt_ = dt * options_.dt_cut_factor;
       reset_trials();
       if (dt_ < dt_floor) {
         if (!solver_ok) trouble("the linear solver did not converge and dt fell below its floor");
-        trouble(fmt::format("open-close iteration did not converge in {} iterations and dt fell below its floor; worst: {}",
-                            cap, describe_contact(worst_contact)));
+        trouble(
+            fmt::format("open-close iteration did not converge in {} iterations and dt fell below its floor; worst: {}",
+                        cap, describe_contact(worst_contact)));
       }
       continue;
     }
@@ -338,8 +346,9 @@ StepReport Engine::step(double max_dt) {
       dt_ = dt * options_.dt_cut_factor;
       reset_trials();
       if (dt_ < dt_floor)
-        trouble(fmt::format("step displacement {:.3g} m exceeds the allowed {:.3g} m even with dt at its floor; worst: {}",
-                            dmax, allowed_, describe_block(worst)));
+        trouble(
+            fmt::format("step displacement {:.3g} m exceeds the allowed {:.3g} m even with dt at its floor; worst: {}",
+                        dmax, allowed_, describe_block(worst)));
       continue;
     }
     // Accept.

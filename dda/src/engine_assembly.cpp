@@ -74,8 +74,8 @@ void Engine::assemble(bool whole) {
   for (std::int64_t k = 0; k < nc; ++k) {
     const ContactCoefficients q = contact_coefficients(cs[k]);
     const ContactCoefficients& old = coefficients_[k];
-    coefficient_changed_[k] = whole || q.kn_eff != old.kn_eff || q.ks_eff != old.ks_eff || q.fn_rhs != old.fn_rhs ||
-                              q.fs_rhs != old.fs_rhs;
+    coefficient_changed_[k] =
+        whole || q.kn_eff != old.kn_eff || q.ks_eff != old.ks_eff || q.fn_rhs != old.fn_rhs || q.fs_rhs != old.fs_rhs;
     coefficients_[k] = q;
   }
   auto inactive = [](const ContactCoefficients& q) { return q.kn_eff == 0.0 && q.ks_eff == 0.0; };

@@ -93,7 +93,10 @@ std::size_t Engine::fracture_check() {
     ev.r2 = ratio[j].r2;
     cracks_.push_back(ev);
     ++crack_counts_.total;
-    if (ev.type == CrackType::Tensile) ++crack_counts_.tensile; else ++crack_counts_.shear;
+    if (ev.type == CrackType::Tensile)
+      ++crack_counts_.tensile;
+    else
+      ++crack_counts_.shear;
     ++n;
   }
   return n;

@@ -7,8 +7,8 @@ PolygonIntegrals polygon_integrals(const double* x, const double* y, std::size_t
   if (n < 3) return g;
   const double ox = x[0];
   const double oy = y[0];
-  double a2 = 0.0;   // 2 A
-  double qx = 0.0;   // 6 A cx'
+  double a2 = 0.0;  // 2 A
+  double qx = 0.0;  // 6 A cx'
   double qy = 0.0;
   double ixx = 0.0;  // 12 ∫x'^2
   double iyy = 0.0;  // 12 ∫y'^2

@@ -62,8 +62,8 @@ double dot(const BlockVector& a, const BlockVector& b) {
 
 namespace {
 
-SolveReport solve_pcg(const BlockMatrix& k, const BlockVector& b, BlockVector& x,
-                      const SolverSettings& cfg, SolverWorkspace& w) {
+SolveReport solve_pcg(const BlockMatrix& k, const BlockVector& b, BlockVector& x, const SolverSettings& cfg,
+                      SolverWorkspace& w) {
   const auto n = static_cast<std::int64_t>(b.size());
   SolveReport rep;
   w.r.resize(b.size());

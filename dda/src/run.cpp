@@ -1,11 +1,11 @@
 #include "ddafrac/dda/run.hpp"
 
+#include <fmt/core.h>
+#include <omp.h>
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
 #include <boost/serialization/string.hpp>
 #include <boost/serialization/vector.hpp>
-#include <fmt/core.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -31,13 +31,13 @@ void serialize(Archive& a, Snapshot& s, unsigned) {
 namespace {
 
 /// The run directory's files besides the snapshots (vtk/snapshot_NNNNNN.vtu).
-const char* const kRunFiles[] = {"summary.json", "history.csv",  "cracks.csv", "crack_intervals.csv",
-                                 "gauges.csv",   "loading.csv", "run.pvd",    "checkpoint.bin",
+const char* const kRunFiles[] = {"summary.json",        "history.csv",  "cracks.csv", "crack_intervals.csv",
+                                 "gauges.csv",          "loading.csv",  "run.pvd",    "checkpoint.bin",
                                  "scene.resolved.toml", "fragments.csv"};
 
 /// NaN or infinity in a step's energies means NaN or infinity in the blocks' state.
 void check_finite(const StepReport& r) {
-  const double values[] = {r.energy.kinetic, r.energy.strain,  r.energy.contact,
+  const double values[] = {r.energy.kinetic, r.energy.strain,   r.energy.contact,
                            r.energy.support, r.max_penetration, r.ledger.balance_error()};
   if (std::all_of(std::begin(values), std::end(values), [](double v) { return std::isfinite(v); })) return;
   throw NumericalTrouble(fmt::format(
@@ -50,11 +50,11 @@ void check_finite(const StepReport& r) {
 /// What the run loop gathers for its files beyond the engine's state: kept in checkpoints, so
 /// that a resumed run writes exactly the files of an uninterrupted one.
 struct RunLog {
-  std::string history, gauges, loading;  // the CSV files' text so far
-  double gauges_time = -1.0;              // s, of the latest gauge rows
+  std::string history, gauges, loading;             // the CSV files' text so far
+  double gauges_time = -1.0;                        // s, of the latest gauge rows
   nlohmann::json peaks = nlohmann::json::object();  // peak forces of the prescribed bodies
   std::vector<Snapshot> snapshots;
-  long next_output = 1;         // number of the next output interval
+  long next_output = 1;          // number of the next output interval
   bool snapshot_at_end = false;  // a step was taken since the latest snapshot
   int threads_fewest = 0, thread_count_changes = 0;
   double wall = 0.0;  // s, of the earlier parts of a resumed run
@@ -191,9 +191,8 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
     nlohmann::json summary = summary_json(engine, o, r, {{"peak", log.peaks}, {"unit", "N/m"}});
     for (const RunLog::Resume& resume : log.resumes)
       summary["resumed_from"].push_back({{"step", resume.step}, {"t", resume.time}});
-    ddafrac::common::write_whole_text(
-        o.out_dir / "summary.json",
-        summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    ddafrac::common::write_whole_text(o.out_dir / "summary.json",
+                                      summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   };
 
   auto write_outputs = [&](bool snapshot, bool state_valid = true) {
@@ -294,7 +293,8 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
   if (r.reason == "interrupted" || r.reason == "max_steps") checkpoint();
   if (r.reason == "completed") fs::remove(o.out_dir / kCheckpointFile);
   if (o.progress)
-    o.progress({engine.time(), end, st.steps, last.dt, last.open_close, last.cg_iterations, log.wall + omp_get_wtime() - t0});
+    o.progress(
+        {engine.time(), end, st.steps, last.dt, last.open_close, last.cg_iterations, log.wall + omp_get_wtime() - t0});
   // After numerical trouble the blocks' state may hold NaN: the files keep the last good one.
   const bool state_valid = r.exit_status != kRunNumericalTrouble;
   write_outputs(log.snapshot_at_end && state_valid, state_valid);

@@ -18,10 +18,10 @@ const char* plane_name(scene::PlaneModel p) { return p == scene::PlaneModel::Str
 
 }  // namespace
 
-
 std::string history_header() {
   return "step,t,dt,open_close_iterations,cg_iterations,dt_cuts,kinetic_energy,strain_energy,contact_energy,"
-         "kinetic_free_energy,kinetic_strain_ratio,max_penetration,contacts,closed,sliding,new_cracks,cracks_total,cracks_tensile,"
+         "kinetic_free_energy,kinetic_strain_ratio,max_penetration,contacts,closed,sliding,new_cracks,cracks_total,"
+         "cracks_tensile,"
          "cracks_shear,support_energy,work_gravity,work_loads,work_supports,friction_dissipation,joint_break_loss,"
          "numerical_dissipation,balance_error\n";
 }
@@ -29,18 +29,20 @@ std::string history_header() {
 std::string history_row(const StepReport& r) {
   const double ratio = r.energy.strain > 0.0 ? r.energy.kinetic_free / r.energy.strain : 0.0;
   const StepEnergy& w = r.ledger.total;
-  return fmt::format("{},{:.17g},{:.17g},{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.9g},{:.17g},{},{},{},{},{},{},{},"
-                     "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.9g}\n",
-                     r.step, r.time, r.dt, r.open_close, r.cg_iterations, r.cuts, r.energy.kinetic, r.energy.strain,
-                     r.energy.contact, r.energy.kinetic_free, ratio, r.max_penetration, r.contacts, r.closed, r.sliding, r.new_cracks,
-                     r.cracks.total, r.cracks.tensile, r.cracks.shear, r.energy.support, w.work_gravity, w.work_loads,
-                     w.work_supports, w.friction, w.joint_breaks, w.numerical, r.ledger.balance_error());
+  return fmt::format(
+      "{},{:.17g},{:.17g},{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.9g},{:.17g},{},{},{},{},{},{},{},"
+      "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.9g}\n",
+      r.step, r.time, r.dt, r.open_close, r.cg_iterations, r.cuts, r.energy.kinetic, r.energy.strain, r.energy.contact,
+      r.energy.kinetic_free, ratio, r.max_penetration, r.contacts, r.closed, r.sliding, r.new_cracks, r.cracks.total,
+      r.cracks.tensile, r.cracks.shear, r.energy.support, w.work_gravity, w.work_loads, w.work_supports, w.friction,
+      w.joint_breaks, w.numerical, r.ledger.balance_error());
 }
 
 std::string cracks_document(const std::vector<CrackEvent>& cracks) {
   std::string s = "t,x,y,type,joint,r1,r2\n";
   for (const CrackEvent& c : cracks)
-    s += fmt::format("{:.17g},{:.17g},{:.17g},{},{},{:.17g},{:.17g}\n", c.t, c.x, c.y, to_string(c.type), c.joint, c.r1, c.r2);
+    s += fmt::format("{:.17g},{:.17g},{:.17g},{},{},{:.17g},{:.17g}\n", c.t, c.x, c.y, to_string(c.type), c.joint, c.r1,
+                     c.r2);
   return s;
 }
 
@@ -50,7 +52,10 @@ std::string crack_intervals_document(const std::vector<CrackEvent>& cracks, doub
   for (const CrackEvent& c : cracks) {
     const auto k = std::min(bins - 1, static_cast<std::size_t>(std::max(0.0, c.t / width * (1.0 - kTimeSlack))));
     ++n[k].total;
-    if (c.type == CrackType::Tensile) ++n[k].tensile; else ++n[k].shear;
+    if (c.type == CrackType::Tensile)
+      ++n[k].tensile;
+    else
+      ++n[k].shear;
   }
   std::string s = "interval_start,interval_end,total,tensile,shear\n";
   for (std::size_t k = 0; k < bins; ++k)
@@ -85,9 +90,9 @@ std::string fragments_document(const Engine& e) {
       "largest_fragment_area,largest_fragment_fraction\n";
   for (std::size_t k = 0; k < times.size(); ++k)
     for (const BodyCracks& b : h.at_times[k])
-      s += fmt::format("{:.9g},{},{},{},{:.9g},{:.9g},{},{},{:.9g},{:.9g}\n", times[k], body_name(e, b), b.cracks_tensile,
-                       b.cracks_shear, b.length_tensile, b.length_shear, b.fragments, b.through_fragments,
-                       b.largest_fragment_area, b.largest_fragment_area / b.area);
+      s += fmt::format("{:.9g},{},{},{},{:.9g},{:.9g},{},{},{:.9g},{:.9g}\n", times[k], body_name(e, b),
+                       b.cracks_tensile, b.cracks_shear, b.length_tensile, b.length_shear, b.fragments,
+                       b.through_fragments, b.largest_fragment_area, b.largest_fragment_area / b.area);
   return s;
 }
 
@@ -140,8 +145,7 @@ std::string pvd_document(const std::vector<Snapshot>& snaps) {
   return common::pvd_document(entries);
 }
 
-nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResult& r,
-                            const nlohmann::json& loading) {
+nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResult& r, const nlohmann::json& loading) {
   using nlohmann::json;
   const auto& sc = e.scene();
   const auto& an = sc.analysis;
@@ -170,10 +174,9 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
   j["allowed_step_displacement"] = e.allowed_displacement();
   j["contact_search_distance"] = e.options().detection.search_distance;
   const PhaseTimes& t = st.times;
-  j["wall_time"] = {{"setup", o.setup_wall},     {"detection", t.detection}, {"assembly", t.assembly},
-                    {"solve", t.solve},        {"judgement", t.judgement}, {"fracture", t.fracture},
-                    {"update", t.update},
-                    {"output", t.output},      {"total", r.wall}};
+  j["wall_time"] = {{"setup", o.setup_wall}, {"detection", t.detection}, {"assembly", t.assembly},
+                    {"solve", t.solve},      {"judgement", t.judgement}, {"fracture", t.fracture},
+                    {"update", t.update},    {"output", t.output},       {"total", r.wall}};
   j["steps"] = st.steps;
   j["simulated_time"] = e.time();
   j["dt"] = {{"min", st.dt_min},
@@ -182,9 +185,10 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
              {"cuts_displacement", st.cuts_displacement},
              {"cuts_open_close", st.cuts_open_close},
              {"cuts_solver", st.cuts_solver}};
-  j["open_close"] = {{"total", st.open_close_total},
-                     {"mean", st.steps > 0 ? static_cast<double>(st.open_close_total) / static_cast<double>(st.steps) : 0.0},
-                     {"max", st.open_close_max}};
+  j["open_close"] = {
+      {"total", st.open_close_total},
+      {"mean", st.steps > 0 ? static_cast<double>(st.open_close_total) / static_cast<double>(st.steps) : 0.0},
+      {"max", st.open_close_max}};
   j["cg"] = {{"solves", st.solves},
              {"total", st.cg_total},
              {"mean", st.solves > 0 ? static_cast<double>(st.cg_total) / static_cast<double>(st.solves) : 0.0},
@@ -192,19 +196,22 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
   const EnergyLedger& ledger = e.ledger();
   j["energy"] = {{"unit", "J/m"},
                  {"initial", ledger.initial},
-                 {"stored", {{"kinetic", ledger.stored.kinetic},
-                             {"strain", ledger.stored.strain},
-                             {"contact", ledger.stored.contact},
-                             {"support", ledger.stored.support},
-                             {"total", ledger.stored.stored()}}},
-                 {"work", {{"gravity", ledger.total.work_gravity},
-                           {"loads", ledger.total.work_loads},
-                           {"supports", ledger.total.work_supports},
-                           {"total", ledger.work()}}},
-                 {"dissipated", {{"friction", ledger.total.friction},
-                                 {"joint_breaks", ledger.total.joint_breaks},
-                                 {"numerical", ledger.total.numerical},
-                                 {"total", ledger.dissipated()}}},
+                 {"stored",
+                  {{"kinetic", ledger.stored.kinetic},
+                   {"strain", ledger.stored.strain},
+                   {"contact", ledger.stored.contact},
+                   {"support", ledger.stored.support},
+                   {"total", ledger.stored.stored()}}},
+                 {"work",
+                  {{"gravity", ledger.total.work_gravity},
+                   {"loads", ledger.total.work_loads},
+                   {"supports", ledger.total.work_supports},
+                   {"total", ledger.work()}}},
+                 {"dissipated",
+                  {{"friction", ledger.total.friction},
+                   {"joint_breaks", ledger.total.joint_breaks},
+                   {"numerical", ledger.total.numerical},
+                   {"total", ledger.dissipated()}}},
                  {"balance_error", ledger.balance_error()},
                  {"largest_balance_error", ledger.largest_balance_error}};
   j["max_penetration"] = st.max_penetration;
@@ -214,8 +221,8 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
   j["contacts"] = e.contacts().contacts.size();
   j["active_terms"] = e.active_terms().names();
   const CrackCounts& cc = e.crack_counts();
-  j["cracks"] = {{"total", cc.total}, {"tensile", cc.tensile}, {"shear", cc.shear},
-                 {"interval", sc.output.crack_interval}};
+  j["cracks"] = {
+      {"total", cc.total}, {"tensile", cc.tensile}, {"shear", cc.shear}, {"interval", sc.output.crack_interval}};
   j["crack_metrics"] = crack_metrics_json(e);
   j["loading"] = loading;
   j["exit"] = {{"status", r.exit_status}, {"reason", r.reason}, {"message", r.message}};
@@ -232,7 +239,8 @@ std::string vtu_document(const Engine& e) {
   std::string s;
   s.reserve(200 * b.vertex_count() + 400 * nb);
   s += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
-  s += fmt::format("<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", b.vertex_count(), nb + nl);
+  s += fmt::format("<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", b.vertex_count(),
+                   nb + nl);
   s += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (std::size_t v = 0; v < b.vertex_count(); ++v) s += fmt::format("{:.12g} {:.12g} 0\n", b.vx[v], b.vy[v]);
   s += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
@@ -252,7 +260,8 @@ std::string vtu_document(const Engine& e) {
   for (std::size_t c = 0; c < nb; ++c) s += "0\n";
   for (const Joint* j : lines) s += fmt::format("{}\n", static_cast<int>(j->failure));
   s += "</DataArray>\n<DataArray type=\"Float64\" Name=\"stress\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (std::size_t c = 0; c < nb; ++c) s += fmt::format("{:.9g} {:.9g} {:.9g}\n", b.stress[c][0], b.stress[c][1], b.stress[c][2]);
+  for (std::size_t c = 0; c < nb; ++c)
+    s += fmt::format("{:.9g} {:.9g} {:.9g}\n", b.stress[c][0], b.stress[c][1], b.stress[c][2]);
   for (std::size_t c = 0; c < nl; ++c) s += "0 0 0\n";
   std::string s1 = "</DataArray>\n<DataArray type=\"Float64\" Name=\"sigma1\" format=\"ascii\">\n";
   std::string s3 = "</DataArray>\n<DataArray type=\"Float64\" Name=\"sigma3\" format=\"ascii\">\n";

@@ -42,7 +42,7 @@ struct Columns {
 
   template <class Archive>
   void serialize(Archive& archive, unsigned int /*version*/) {
-    archive & index & counts & rows & values;
+    archive& index& counts& rows& values;
   }
 };
 
@@ -75,8 +75,7 @@ Columns owned_upper_columns(const Matrix& matrix) {
 /// The whole upper triangle in compressed columns, on every rank: each rank's columns gathered.
 cholmod_sparse* whole_upper_triangle(const Matrix& matrix, cholmod_common& common) {
   const auto n = static_cast<std::size_t>(matrix.m());
-  const std::vector<Columns> parts =
-      dealii::Utilities::MPI::all_gather(MPI_COMM_WORLD, owned_upper_columns(matrix));
+  const std::vector<Columns> parts = dealii::Utilities::MPI::all_gather(MPI_COMM_WORLD, owned_upper_columns(matrix));
   std::vector<int> starts(n + 1, 0);
   std::size_t entries = 0;
   for (const auto& part : parts) {
@@ -103,8 +102,7 @@ cholmod_sparse* whole_upper_triangle(const Matrix& matrix, cholmod_common& commo
 
 }  // namespace
 
-DirectSolver::DirectSolver(const Matrix& matrix)
-    : factor_(std::make_unique<Factor>()) {
+DirectSolver::DirectSolver(const Matrix& matrix) : factor_(std::make_unique<Factor>()) {
   matrix.locally_owned_range_indices().fill_index_vector(owned_);
   cholmod_common& common = factor_->common;
   common.supernodal = CHOLMOD_SIMPLICIAL;  // its triangular solves are the fastest at this size
@@ -116,8 +114,7 @@ DirectSolver::DirectSolver(const Matrix& matrix)
   if (factor_->factor) cholmod_factorize(a, factor_->factor, &common);
   const bool positive = common.status == CHOLMOD_OK;
   cholmod_free_sparse(&a, &common);
-  if (!factor_->factor || !positive)
-    throw FemError("CHOLMOD could not factorise the matrix (not positive definite?)");
+  if (!factor_->factor || !positive) throw FemError("CHOLMOD could not factorise the matrix (not positive definite?)");
 }
 
 DirectSolver::~DirectSolver() = default;
@@ -130,8 +127,7 @@ void DirectSolver::solve(Vec& x, const Vec& b) {
   auto* whole = static_cast<double*>(f.b->x);
   if (!single_rank()) std::fill(whole, whole + n, 0.0);
   for (std::size_t k = 0; k < owned_.size(); ++k) whole[owned_[k]] = b.begin()[k];
-  if (!single_rank())
-    MPI_Allreduce(MPI_IN_PLACE, whole, static_cast<int>(n), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  if (!single_rank()) MPI_Allreduce(MPI_IN_PLACE, whole, static_cast<int>(n), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
   if (!cholmod_solve2(CHOLMOD_A, f.factor, f.b, nullptr, &f.x, nullptr, &f.y, &f.e, &f.common))
     throw FemError("CHOLMOD solve failed");
   const auto* solution = static_cast<const double*>(f.x->x);

@@ -11,9 +11,9 @@
 #include "ddafrac/common/pvd.hpp"
 #include "ddafrac/common/whole_file.hpp"
 
+#include "ddafrac/common/angles.hpp"
 #include "direct_solver.hpp"
 #include "model.hpp"
-#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::fem {
 
@@ -49,12 +49,10 @@ double energy_of(const detail::Matrix& matrix, const detail::Vec& x, detail::Vec
 }
 
 const DynamicProblem& checked(const DynamicProblem& problem) {
-  if (!(problem.dt > 0.0) || !(problem.end_time > 0.0))
-    throw FemError("dynamic FEM needs dt > 0 and end_time > 0");
+  if (!(problem.dt > 0.0) || !(problem.end_time > 0.0)) throw FemError("dynamic FEM needs dt > 0 and end_time > 0");
   const double beta = problem.newmark.beta, gamma = problem.newmark.gamma;
   if (!(beta > 0.0) || gamma < 0.5) throw FemError("Newmark needs beta > 0 and gamma >= 1/2");
-  if (problem.pulse && !(problem.pulse->duration > 0.0))
-    throw FemError("a traction pulse needs a duration > 0");
+  if (problem.pulse && !(problem.pulse->duration > 0.0)) throw FemError("a traction pulse needs a duration > 0");
   return problem;
 }
 
@@ -87,10 +85,10 @@ class NewmarkRun {
   detail::Constraints constraints_;
   detail::Matrix stiffness_, mass_;
   std::unique_ptr<detail::DirectSolver> solver_;
-  detail::Vec patch_load_;  // N/m per Pa: nodal load of a unit pressure on the patch
+  detail::Vec patch_load_;                    // N/m per Pa: nodal load of a unit pressure on the patch
   std::vector<detail::Model::Probe> gauges_;  // one per problem gauge, located once
-  detail::Vec u_, v_, a_;   // state carried between steps: m, m/s, m/s^2
-  detail::Vec w_, rhs_, u_new_, scratch_;  // per-step scratch
+  detail::Vec u_, v_, a_;                     // state carried between steps: m, m/s, m/s^2
+  detail::Vec w_, rhs_, u_new_, scratch_;     // per-step scratch
   DynamicResult result_;
 };
 
@@ -111,10 +109,8 @@ DynamicResult NewmarkRun::run() {
   const auto steps = static_cast<int>(std::ceil(problem_.end_time / dt_ - step_rounding));
   const auto every = std::max(1, static_cast<int>(std::lround(problem_.output_interval / dt_)));
   const bool snapshots = !problem_.snapshot_directory.empty() && problem_.snapshot_interval > 0.0;
-  const auto every_snapshot =
-      std::max(1, static_cast<int>(std::lround(problem_.snapshot_interval / dt_)));
-  if (snapshots && detail::is_root())
-    std::filesystem::create_directories(problem_.snapshot_directory / "vtk");
+  const auto every_snapshot = std::max(1, static_cast<int>(std::lround(problem_.snapshot_interval / dt_)));
+  if (snapshots && detail::is_root()) std::filesystem::create_directories(problem_.snapshot_directory / "vtk");
   record(0.0);
   if (snapshots) snapshot(0.0);
   for (int n = 1; n <= steps; ++n) {
@@ -142,8 +138,7 @@ void NewmarkRun::setup_system() {
   dealii::Vector<double> unit_load(model_.n_dofs());
   if (problem_.pulse)
     model_.add_pressure(
-        1.0, [patch](const detail::Point&, dealii::types::boundary_id b) { return b == patch ? 1.0 : 0.0; },
-        unit_load);
+        1.0, [patch](const detail::Point&, dealii::types::boundary_id b) { return b == patch ? 1.0 : 0.0; }, unit_load);
   patch_load_ = detail::to_trilinos(unit_load, model_);
 
   dealii::Vector<double> v_initial(model_.n_dofs());

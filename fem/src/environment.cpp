@@ -13,11 +13,7 @@ struct Environment::Impl {
 Environment::Environment(int& argc, char**& argv) : impl_(std::make_unique<Impl>(argc, argv)) {}
 Environment::~Environment() = default;
 
-int Environment::rank() {
-  return static_cast<int>(dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD));
-}
-int Environment::size() {
-  return static_cast<int>(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
-}
+int Environment::rank() { return static_cast<int>(dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)); }
+int Environment::size() { return static_cast<int>(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)); }
 
 }  // namespace ddafrac::fem

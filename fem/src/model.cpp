@@ -9,8 +9,8 @@
 #include <deal.II/grid/grid_reordering.h>
 #include <deal.II/grid/manifold_lib.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
@@ -21,8 +21,8 @@
 #include <cmath>
 #include <fstream>
 
-#include "ddafrac/common/whole_file.hpp"
 #include <limits>
+#include "ddafrac/common/whole_file.hpp"
 
 namespace ddafrac::fem::detail {
 namespace {
@@ -92,9 +92,7 @@ class StressPostprocessor : public dealii::DataPostprocessor<dim> {
       out[q][4] = p.s3;
     }
   }
-  std::vector<std::string> get_names() const override {
-    return {"sxx", "syy", "txy", "s1", "s3"};
-  }
+  std::vector<std::string> get_names() const override { return {"sxx", "syy", "txy", "s1", "s3"}; }
   dealii::UpdateFlags get_needed_update_flags() const override { return dealii::update_gradients; }
 
  private:
@@ -160,8 +158,7 @@ Model::Model(const meshes::Mesh& mesh, const Material& material, const Discretis
     for (const unsigned int f : cell->face_indices()) {
       const auto face = cell->face(f);
       if (!face->at_boundary() || face->boundary_id() == unnamed_boundary) continue;
-      if (is_curved_group(mesh.boundary_names[face->boundary_id() - 1u]))
-        face->set_manifold_id(rim_manifold);
+      if (is_curved_group(mesh.boundary_names[face->boundary_id() - 1u])) face->set_manifold_id(rim_manifold);
     }
   tria_.set_manifold(rim_manifold, dealii::SphericalManifold<dim>(Point()));
   if (disc.refinements > 0) tria_.refine_global(static_cast<unsigned int>(disc.refinements));
@@ -200,8 +197,7 @@ void Model::build_geometry() {
     std::vector<Point> nodes(n_nodes);
     for (unsigned int k = 0; k < n_nodes; ++k) {
       Point p;
-      for (const unsigned int v : cell->vertex_indices())
-        p += linear->shape_value(v, unit_points[k]) * cell->vertex(v);
+      for (const unsigned int v : cell->vertex_indices()) p += linear->shape_value(v, unit_points[k]) * cell->vertex(v);
       nodes[k] = p;
     }
     if (degree_ > 1) {
@@ -231,8 +227,7 @@ void Model::build_geometry() {
     cells_[cell->active_cell_index()] = cell;
     cell_nodes_[cell->active_cell_index()] = std::move(nodes);
   }
-  mapping_ = std::make_unique<dealii::MappingFEField<dim, dim, dealii::Vector<double>>>(
-      dof_handler_, geometry_);
+  mapping_ = std::make_unique<dealii::MappingFEField<dim, dim, dealii::Vector<double>>>(dof_handler_, geometry_);
 }
 
 void Model::build_locator() {
@@ -278,8 +273,7 @@ void Model::build_locator() {
   }
 }
 
-Point Model::geometry_map(unsigned int cell_index, const Point& unit,
-                          dealii::Tensor<2, dim>* jacobian) const {
+Point Model::geometry_map(unsigned int cell_index, const Point& unit, dealii::Tensor<2, dim>* jacobian) const {
   const auto& nodes = cell_nodes_[cell_index];
   Point x;
   dealii::Tensor<2, dim> j;
@@ -299,8 +293,7 @@ std::optional<Model::Located> Model::locate(const Point& p) const {
   const Point start = simplex ? Point(1.0 / 3.0, 1.0 / 3.0) : Point(0.5, 0.5);
   std::optional<Located> best;
   double best_distance = extrapolation_tolerance;
-  for (const unsigned int c :
-       grid_cells_[static_cast<std::size_t>(tj) * grid_n_ + static_cast<std::size_t>(ti)]) {
+  for (const unsigned int c : grid_cells_[static_cast<std::size_t>(tj) * grid_n_ + static_cast<std::size_t>(ti)]) {
     Point u = start;
     for (int it = 0; it < newton_max_iterations; ++it) {
       dealii::Tensor<2, dim> j;
@@ -327,8 +320,7 @@ std::optional<Model::Probe> Model::probe(const Point& p) const {
   const auto inverse = dealii::invert(j);
   Probe out;
   out.dofs.resize(fe_->n_dofs_per_cell());
-  typename DofHandler::active_cell_iterator cell(&tria_, where->cell->level(),
-                                                 where->cell->index(), &dof_handler_);
+  typename DofHandler::active_cell_iterator cell(&tria_, where->cell->level(), where->cell->index(), &dof_handler_);
   cell->get_dof_indices(out.dofs);
   for (unsigned int i = 0; i < out.dofs.size(); ++i) {
     const auto [component, node] = fe_->system_to_component_index(i);
@@ -372,8 +364,7 @@ std::vector<global_dof_index> Model::boundary_dofs(BoundaryId id, int component)
       if (!face->at_boundary() || face->boundary_id() != id) continue;
       face->get_dof_indices(face_indices);
       for (const auto i : face_indices)
-        if (component < 0 || dof_component(i) == static_cast<unsigned int>(component))
-          out.push_back(i);
+        if (component < 0 || dof_component(i) == static_cast<unsigned int>(component)) out.push_back(i);
     }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -400,8 +391,7 @@ void Model::assemble(const Constraints& constraints, Matrix& stiffness, Matrix* 
                      dealii::Vector<double>* rhs) const {
   const bool simplex = tria_.all_reference_cells_are_simplex();
   dealii::FEValues<dim> values(*mapping_, *fe_, cell_quadrature(simplex, degree_),
-                               dealii::update_values | dealii::update_gradients |
-                                   dealii::update_JxW_values);
+                               dealii::update_values | dealii::update_gradients | dealii::update_JxW_values);
   const dealii::FEValuesExtractors::Vector displacement(0);
   const Lame l = lame(material_);
   const double rho = material_.elastic.density;
@@ -426,8 +416,7 @@ void Model::assemble(const Constraints& constraints, Matrix& stiffness, Matrix* 
       const double jxw = values.JxW(q);
       for (unsigned int i = 0; i < n; ++i)
         for (unsigned int j = 0; j <= i; ++j) {
-          k_local(i, j) += (l.lambda * divergence[i] * divergence[j] +
-                            2.0 * l.mu * (strain[i] * strain[j])) * jxw;
+          k_local(i, j) += (l.lambda * divergence[i] * divergence[j] + 2.0 * l.mu * (strain[i] * strain[j])) * jxw;
           if (mass) m_local(i, j) += rho * (shape[i] * shape[j]) * jxw;
         }
     }
@@ -450,14 +439,12 @@ void Model::assemble(const Constraints& constraints, Matrix& stiffness, Matrix* 
   if (rhs) sum_over_ranks(*rhs);
 }
 
-void Model::add_pressure(double pressure, const FaceSelector& selected,
-                         dealii::Vector<double>& rhs) const {
+void Model::add_pressure(double pressure, const FaceSelector& selected, dealii::Vector<double>& rhs) const {
   // Composite rule: a loaded arc that ends inside a face is integrated to O(h / copies).
-  const dealii::QIterated<dim - 1> quadrature(
-      dealii::QGauss<1>(static_cast<unsigned int>(degree_ + 1)), partial_face_copies);
+  const dealii::QIterated<dim - 1> quadrature(dealii::QGauss<1>(static_cast<unsigned int>(degree_ + 1)),
+                                              partial_face_copies);
   dealii::FEFaceValues<dim> values(*mapping_, *fe_, quadrature,
-                                   dealii::update_values | dealii::update_normal_vectors |
-                                       dealii::update_JxW_values |
+                                   dealii::update_values | dealii::update_normal_vectors | dealii::update_JxW_values |
                                        dealii::update_quadrature_points);
   const dealii::FEValuesExtractors::Vector displacement(0);
   const unsigned int n = fe_->n_dofs_per_cell();
@@ -509,26 +496,25 @@ void Model::write_vtu(const dealii::Vector<double>& u, const std::filesystem::pa
                       const dealii::Vector<double>* velocity) const {
   dealii::DataOut<dim> out;
   out.attach_dof_handler(dof_handler_);
-  const std::vector<dealii::DataComponentInterpretation::DataComponentInterpretation>
-      interpretation(dim, dealii::DataComponentInterpretation::component_is_part_of_vector);
-  out.add_data_vector(u, std::vector<std::string>(dim, "displacement"),
-                      dealii::DataOut<dim>::type_dof_data, interpretation);
+  const std::vector<dealii::DataComponentInterpretation::DataComponentInterpretation> interpretation(
+      dim, dealii::DataComponentInterpretation::component_is_part_of_vector);
+  out.add_data_vector(u, std::vector<std::string>(dim, "displacement"), dealii::DataOut<dim>::type_dof_data,
+                      interpretation);
   if (velocity)
-    out.add_data_vector(*velocity, std::vector<std::string>(dim, "velocity"),
-                        dealii::DataOut<dim>::type_dof_data, interpretation);
+    out.add_data_vector(*velocity, std::vector<std::string>(dim, "velocity"), dealii::DataOut<dim>::type_dof_data,
+                        interpretation);
   const StressPostprocessor stress(lame(material_));
   out.add_data_vector(u, stress);
   // Every rank holds every cell and the whole of u: rank 0 writes the whole mesh (the default
   // selection would be its own cells only).
   using CellIterator = typename dealii::DataOut<dim>::cell_iterator;
-  out.set_cell_selection(
-      [](const dealii::Triangulation<dim>& t) -> CellIterator { return t.begin_active(); },
-      [](const dealii::Triangulation<dim>&, const CellIterator& cell) -> CellIterator {
-        auto next = cell;
-        do ++next;
-        while (next.state() == dealii::IteratorState::valid && !next->is_active());
-        return next;
-      });
+  out.set_cell_selection([](const dealii::Triangulation<dim>& t) -> CellIterator { return t.begin_active(); },
+                         [](const dealii::Triangulation<dim>&, const CellIterator& cell) -> CellIterator {
+                           auto next = cell;
+                           do ++next;
+                           while (next.state() == dealii::IteratorState::valid && !next->is_active());
+                           return next;
+                         });
   if (!is_root()) return;
   out.build_patches(*mapping_, static_cast<unsigned int>(degree_));
   common::write_whole_file(path, [&](const std::filesystem::path& tmp) {
@@ -556,16 +542,14 @@ dealii::Vector<double> to_serial(const Vec& v) {
 void sum_over_ranks(dealii::Vector<double>& v) {
   if (single_rank()) return;
   const dealii::Vector<double> local(v);
-  dealii::Utilities::MPI::sum(dealii::make_array_view(local), MPI_COMM_WORLD,
-                              dealii::make_array_view(v));
+  dealii::Utilities::MPI::sum(dealii::make_array_view(local), MPI_COMM_WORLD, dealii::make_array_view(v));
 }
 
 bool is_root() { return dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0; }
 
 bool single_rank() { return dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1; }
 
-ElasticSolver::ElasticSolver(const Matrix& matrix, const Model& model,
-                             const SolverSettings& settings)
+ElasticSolver::ElasticSolver(const Matrix& matrix, const Model& model, const SolverSettings& settings)
     : matrix_(matrix), settings_(settings) {
   dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
   data.elliptic = true;

@@ -62,12 +62,9 @@ class Model {
   /// Component (0 = x, 1 = y) of every DoF.
   unsigned int dof_component(dealii::types::global_dof_index i) const { return component_[i]; }
   /// The DoF of the other component at the same support point.
-  dealii::types::global_dof_index sibling(dealii::types::global_dof_index i) const {
-    return sibling_[i];
-  }
+  dealii::types::global_dof_index sibling(dealii::types::global_dof_index i) const { return sibling_[i]; }
   /// DoFs (of one component, or both if component < 0) on the faces of a boundary id.
-  std::vector<dealii::types::global_dof_index> boundary_dofs(dealii::types::boundary_id id,
-                                                             int component) const;
+  std::vector<dealii::types::global_dof_index> boundary_dofs(dealii::types::boundary_id id, int component) const;
 
   void make_sparse_matrix(Matrix& matrix, const Constraints& constraints) const;
   /// Stiffness (and consistent mass, if given) with constraints condensed, each rank
@@ -80,8 +77,7 @@ class Model {
   /// 0 = free), so that a loaded arc may end inside a face. `rhs` is a full vector, the same on
   /// every rank afterwards.
   using FaceSelector = std::function<double(const Point& point, dealii::types::boundary_id id)>;
-  void add_pressure(double pressure, const FaceSelector& selected,
-                    dealii::Vector<double>& rhs) const;
+  void add_pressure(double pressure, const FaceSelector& selected, dealii::Vector<double>& rhs) const;
   /// Internal force vector K u (unconstrained, cell by cell), full on every rank.
   dealii::Vector<double> internal_force(const dealii::Vector<double>& u) const;
 
@@ -118,8 +114,7 @@ class Model {
     Point unit;
   };
   std::optional<Located> locate(const Point& p) const;
-  Point geometry_map(unsigned int cell_index, const Point& unit,
-                     dealii::Tensor<2, dim>* jacobian) const;
+  Point geometry_map(unsigned int cell_index, const Point& unit, dealii::Tensor<2, dim>* jacobian) const;
   void build_geometry();
   void build_locator();
 

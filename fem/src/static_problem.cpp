@@ -11,9 +11,9 @@
 
 namespace ddafrac::fem {
 
-using detail::Model;
 using dealii::types::boundary_id;
 using dealii::types::global_dof_index;
+using detail::Model;
 
 struct StaticSolution::Impl {
   std::unique_ptr<Model> model;
@@ -59,8 +59,7 @@ void pin_rigid_modes(const Model& model, detail::Constraints& constraints) {
   const double xc = points[*centre][0];
   for (global_dof_index i = 0; i < points.size(); ++i) {
     if (model.dof_component(i) != 1) continue;
-    if (!far || before(i, *far, -std::abs(points[i][0] - xc), -std::abs(points[*far][0] - xc)))
-      far = i;
+    if (!far || before(i, *far, -std::abs(points[i][0] - xc), -std::abs(points[*far][0] - xc))) far = i;
   }
   for (const global_dof_index i : {model.sibling(*centre), *centre, *far}) constraints.add_line(i);
 }
@@ -82,14 +81,12 @@ StaticSolution solve_static(const StaticProblem& problem) {
   dealii::Vector<double> load(model.n_dofs());
 
   // Applies a pressure on the faces of the groups, remembering each group's resultant.
-  auto apply = [&](double pressure, const std::vector<std::string>& groups,
-                   const Model::FaceSelector& extra) {
+  auto apply = [&](double pressure, const std::vector<std::string>& groups, const Model::FaceSelector& extra) {
     for (const auto& group : groups) {
       const boundary_id id = model.require_boundary(group);
       dealii::Vector<double> part(model.n_dofs());
       model.add_pressure(
-          pressure,
-          [&](const detail::Point& q, boundary_id b) { return b == id ? extra(q, b) : 0.0; }, part);
+          pressure, [&](const detail::Point& q, boundary_id b) { return b == id ? extra(q, b) : 0.0; }, part);
       impl->applied[group] = resultant(model, part);
       load += part;
     }
@@ -159,20 +156,17 @@ StaticSolution::~StaticSolution() = default;
 
 StressSample StaticSolution::stress_at(double x, double y) const {
   const auto s = impl_->model->stress_at(impl_->u, detail::Point(x, y));
-  if (!s) throw FemError("point (" + std::to_string(x) + ", " + std::to_string(y) +
-                         ") is outside the FEM body");
+  if (!s) throw FemError("point (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the FEM body");
   return make_sample(x, y, *s);
 }
 
-std::vector<StressSample> StaticSolution::profile(double x0, double y0, double x1, double y1,
-                                                  int n) const {
+std::vector<StressSample> StaticSolution::profile(double x0, double y0, double x1, double y1, int n) const {
   if (n < 2) throw FemError("a profile needs at least two points");
   std::vector<StressSample> out;
   for (int i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) / (n - 1);
     const double x = x0 + t * (x1 - x0), y = y0 + t * (y1 - y0);
-    if (const auto s = impl_->model->stress_at(impl_->u, detail::Point(x, y)))
-      out.push_back(make_sample(x, y, *s));
+    if (const auto s = impl_->model->stress_at(impl_->u, detail::Point(x, y))) out.push_back(make_sample(x, y, *s));
   }
   return out;
 }
@@ -191,9 +185,7 @@ std::array<double, 2> StaticSolution::applied_force(const std::string& group) co
   return it == impl_->applied.end() ? std::array<double, 2>{0.0, 0.0} : it->second;
 }
 
-void StaticSolution::write_vtu(const std::filesystem::path& path) const {
-  impl_->model->write_vtu(impl_->u, path);
-}
+void StaticSolution::write_vtu(const std::filesystem::path& path) const { impl_->model->write_vtu(impl_->u, path); }
 
 const RunStats& StaticSolution::stats() const { return impl_->stats; }
 

@@ -8,8 +8,8 @@
 
 #include <fmt/format.h>
 
-#include "ddafrac/meshes/generate.hpp"
 #include "ddafrac/common/angles.hpp"
+#include "ddafrac/meshes/generate.hpp"
 
 namespace ddafrac::meshes::detail {
 
@@ -55,8 +55,7 @@ double min_interior_angle_deg(const Mesh& mesh, std::size_t c) {
   const std::size_t n = mesh.cell_size(c);
   double smallest = kPi;
   for (std::size_t k = 0; k < n; ++k) {
-    smallest = std::min(smallest, angle_at(corner(mesh, c, k + n - 1), corner(mesh, c, k),
-                                           corner(mesh, c, k + 1)));
+    smallest = std::min(smallest, angle_at(corner(mesh, c, k + n - 1), corner(mesh, c, k), corner(mesh, c, k + 1)));
   }
   return smallest * kDegreesPerRadian;
 }
@@ -70,8 +69,7 @@ void orient_cells_counter_clockwise(Mesh& mesh, const std::string& source) {
       throw MeshError(fmt::format("{}: cell {} has zero area", source, c));
     }
     if (area < 0.0) {
-      std::reverse(mesh.cell_nodes.begin() + mesh.cell_offsets[c],
-                   mesh.cell_nodes.begin() + mesh.cell_offsets[c + 1]);
+      std::reverse(mesh.cell_nodes.begin() + mesh.cell_offsets[c], mesh.cell_nodes.begin() + mesh.cell_offsets[c + 1]);
     }
   }
 }
@@ -87,8 +85,8 @@ void orient_boundary_edges(Mesh& mesh, const std::string& source) {
   for (BoundaryEdge& edge : mesh.boundary_edges) {
     if (directed_edges.count({edge.a, edge.b}) != 0) continue;
     if (directed_edges.count({edge.b, edge.a}) == 0) {
-      throw MeshError(fmt::format("{}: boundary edge ({}, {}) of group \"{}\" is no cell edge",
-                                  source, edge.a, edge.b, mesh.boundary_names[edge.group]));
+      throw MeshError(fmt::format("{}: boundary edge ({}, {}) of group \"{}\" is no cell edge", source, edge.a, edge.b,
+                                  mesh.boundary_names[edge.group]));
     }
     std::swap(edge.a, edge.b);
   }

@@ -10,8 +10,8 @@
 
 #include <fmt/format.h>
 
-#include "ddafrac/meshes/generate.hpp"
 #include "ddafrac/common/angles.hpp"
+#include "ddafrac/meshes/generate.hpp"
 
 namespace ddafrac::meshes::detail {
 
@@ -35,9 +35,7 @@ struct RimPiece {
 /// Adds gmsh entities for the disc outline, the slot and the physical groups.
 class DiscBuilder {
  public:
-  explicit DiscBuilder(double radius) : radius_(radius) {
-    centre_ = gmsh::model::geo::addPoint(0.0, 0.0, 0.0);
-  }
+  explicit DiscBuilder(double radius) : radius_(radius) { centre_ = gmsh::model::geo::addPoint(0.0, 0.0, 0.0); }
 
   /// The rim as pieces starting at start_angle and closing after a full turn.
   int rim_loop(double start_angle, const std::vector<RimPiece>& pieces) {
@@ -66,8 +64,7 @@ class DiscBuilder {
     const double along[4] = {-half_length, half_length, half_length, -half_length};
     const double across[4] = {-half_width, -half_width, half_width, half_width};
     for (int k = 0; k < 4; ++k) {
-      corners.push_back(gmsh::model::geo::addPoint(along[k] * c - across[k] * s,
-                                                   along[k] * s + across[k] * c, 0.0));
+      corners.push_back(gmsh::model::geo::addPoint(along[k] * c - across[k] * s, along[k] * s + across[k] * c, 0.0));
     }
     std::vector<int> curves;
     for (int k = 0; k < 4; ++k) {
@@ -93,17 +90,13 @@ class DiscBuilder {
 
  private:
   int rim_point(double angle) const {
-    return gmsh::model::geo::addPoint(snap(radius_ * std::cos(angle)),
-                                      snap(radius_ * std::sin(angle)), 0.0);
+    return gmsh::model::geo::addPoint(snap(radius_ * std::cos(angle)), snap(radius_ * std::sin(angle)), 0.0);
   }
 
-  double snap(double coordinate) const {
-    return std::abs(coordinate) < kSnapToAxis * radius_ ? 0.0 : coordinate;
-  }
+  double snap(double coordinate) const { return std::abs(coordinate) < kSnapToAxis * radius_ ? 0.0 : coordinate; }
 
   /// An arc split into pieces short enough for gmsh's three-point circle arcs.
-  void add_arc(int from, double from_angle, int to, double to_angle, const char* group,
-               std::vector<int>& curves) {
+  void add_arc(int from, double from_angle, int to, double to_angle, const char* group, std::vector<int>& curves) {
     const int pieces = static_cast<int>(std::ceil((to_angle - from_angle - kAngleRoundOff) / kMaxArcAngle));
     const double step = (to_angle - from_angle) / pieces;
     for (int k = 1; k <= pieces; ++k) {
@@ -128,12 +121,11 @@ void require(bool condition, const std::string& what) {
 }
 
 void check_slot(double radius, const Slit& slot, const char* name) {
-  require(slot.length > 0.0 && slot.width > 0.0,
-          fmt::format("{} length and width must be positive", name));
+  require(slot.length > 0.0 && slot.width > 0.0, fmt::format("{} length and width must be positive", name));
   const double corner_radius = std::hypot(slot.length / 2, slot.width / 2);
-  require(corner_radius < (1.0 - kSlotClearance) * radius,
-          fmt::format("{} ({} m x {} m) must lie inside the disc of radius {} m", name,
-                      slot.length, slot.width, radius));
+  require(
+      corner_radius < (1.0 - kSlotClearance) * radius,
+      fmt::format("{} ({} m x {} m) must lie inside the disc of radius {} m", name, slot.length, slot.width, radius));
 }
 
 /// A disc outline: the rim from start_angle round in pieces, an optional central slot, and the
@@ -170,8 +162,7 @@ Outline full_rim(double diameter) {
 }
 
 DiscModel build(const PlainDisc& disc) {
-  require(disc.load_half_angle >= 0.0 && disc.load_half_angle < kPi / 4,
-          "load half-angle must lie in [0, pi/4)");
+  require(disc.load_half_angle >= 0.0 && disc.load_half_angle < kPi / 4, "load half-angle must lie in [0, pi/4)");
   Outline outline = full_rim(disc.diameter);
   if (const double a = disc.load_half_angle; a > 0.0) {
     outline.start_angle = -kPi / 2 + a;
@@ -188,12 +179,15 @@ DiscModel build(const FlattenedDisc& disc) {
   require(disc.flat_angle > 0.0 && disc.flat_angle < kPi / 2, "flat angle must lie in (0, pi/2)");
   const double r = disc.diameter / 2, b = disc.flat_angle / 2;
   const double segment_area = r * r / 2 * (disc.flat_angle - std::sin(disc.flat_angle));
-  return build_outline({disc.diameter, -kPi / 2 + b,
+  return build_outline({disc.diameter,
+                        -kPi / 2 + b,
                         {{kPi / 2 - b, Segment::Arc, "rim"},
                          {kPi / 2 + b, Segment::Chord, "flat_top"},
                          {3 * kPi / 2 - b, Segment::Arc, "rim"},
                          {3 * kPi / 2 + b, Segment::Chord, "flat_bottom"}},
-                        disc_area(disc.diameter) - 2 * segment_area, disc.slit, "slit"});
+                        disc_area(disc.diameter) - 2 * segment_area,
+                        disc.slit,
+                        "slit"});
 }
 
 DiscModel build(const SlitDisc& disc) {
@@ -209,7 +203,8 @@ DiscModel build(const ImpactDisc& disc) {
   require(disc.plate_width > 0.0 && disc.plate_height > 0.0, "plate size must be positive");
   const double p = disc.patch_half_angle;
   // The patch is split at the lowest point so that (0, -R) is a node of the mesh.
-  return build_outline({disc.diameter, -kPi / 2 + p,
+  return build_outline({disc.diameter,
+                        -kPi / 2 + p,
                         {{3 * kPi / 2 - p, Segment::Arc, "rim"},
                          {3 * kPi / 2, Segment::Arc, "impact_patch"},
                          {3 * kPi / 2 + p, Segment::Arc, "impact_patch"}},
@@ -223,8 +218,7 @@ DiscModel build(const MshFile& file) {
 }
 
 /// One rectangular cell with four nodes of its own, counter-clockwise.
-void append_rectangle(Mesh& mesh, const std::string& body, double x0, double y0, double x1,
-                      double y1) {
+void append_rectangle(Mesh& mesh, const std::string& body, double x0, double y0, double x1, double y1) {
   const auto first = static_cast<Index>(mesh.nodes.size());
   mesh.nodes.insert(mesh.nodes.end(), {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
   for (Index k = 0; k < 4; ++k) mesh.cell_nodes.push_back(first + k);
@@ -241,18 +235,15 @@ DiscModel build_disc_model(const Geometry& geometry) {
 
 void append_rigid_bodies(const Geometry& geometry, Mesh& mesh) {
   if (const auto* disc = std::get_if<FlattenedDisc>(&geometry); disc && disc->with_platens) {
-    require(disc->platen_thickness > 0.0 && disc->platen_width > 0.0,
-            "platen size must be positive");
+    require(disc->platen_thickness > 0.0 && disc->platen_width > 0.0, "platen size must be positive");
     const double flat_y = disc->diameter / 2 * std::cos(disc->flat_angle / 2);
     const double half_width = disc->platen_width / 2;
-    append_rectangle(mesh, "top_platen", -half_width, flat_y, half_width,
-                     flat_y + disc->platen_thickness);
-    append_rectangle(mesh, "bottom_platen", -half_width, -flat_y - disc->platen_thickness,
-                     half_width, -flat_y);
+    append_rectangle(mesh, "top_platen", -half_width, flat_y, half_width, flat_y + disc->platen_thickness);
+    append_rectangle(mesh, "bottom_platen", -half_width, -flat_y - disc->platen_thickness, half_width, -flat_y);
   } else if (const auto* impact = std::get_if<ImpactDisc>(&geometry)) {
     const double bottom = -impact->diameter / 2;
-    append_rectangle(mesh, "plate", -impact->plate_width / 2, bottom - impact->plate_height,
-                     impact->plate_width / 2, bottom);
+    append_rectangle(mesh, "plate", -impact->plate_width / 2, bottom - impact->plate_height, impact->plate_width / 2,
+                     bottom);
   }
 }
 

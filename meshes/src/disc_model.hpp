@@ -12,10 +12,10 @@ namespace ddafrac::meshes::detail {
 
 /// What the mesh sizing needs to know about the model that was built.
 struct DiscModel {
-  int surface = 0;                  // gmsh tag of the disc surface
-  std::vector<int> slot_corners;    // gmsh point tags of the slot corners (empty: no slot)
-  double slot_width = 0.0;          // m
-  double area = 0.0;                // m^2, analytic area of the meshed disc
+  int surface = 0;                // gmsh tag of the disc surface
+  std::vector<int> slot_corners;  // gmsh point tags of the slot corners (empty: no slot)
+  double slot_width = 0.0;        // m
+  double area = 0.0;              // m^2, analytic area of the meshed disc
 };
 
 /// Builds the disc of `geometry` into the current (empty) gmsh model and synchronises it.

@@ -18,22 +18,20 @@ namespace ddafrac::meshes {
 
 namespace {
 
-constexpr int kFrontalDelaunay = 6;    // Mesh.Algorithm; 8 (Frontal-Delaunay quads) crashes 4.8
-constexpr int kBlossomFullQuad = 3;   // Mesh.RecombinationAlgorithm
+constexpr int kFrontalDelaunay = 6;           // Mesh.Algorithm; 8 (Frontal-Delaunay quads) crashes 4.8
+constexpr int kBlossomFullQuad = 3;           // Mesh.RecombinationAlgorithm
 constexpr double kSlotEndSizePerWidth = 1.0;  // element size at the slot ends / slot width
 constexpr double kSizeGrowthRate = 0.4;       // m of size per m of distance from the slot ends
 constexpr double kMinSizeExponent = 1.0;      // bounds of the fitted N ~ h^-p law
 constexpr double kMaxSizeExponent = 3.0;
-constexpr double kAreaExponent = 2.0;         // N ~ h^-2 for a uniform 2D mesh
+constexpr double kAreaExponent = 2.0;  // N ~ h^-2 for a uniform 2D mesh
 /// Largest element size tried, as a fraction of the side of a square of the disc's area: larger
 /// elements no longer resolve the disc, and the cell count stops falling well before (a slot's
 /// graded ends keep hundreds of cells whatever the size far from them).
 constexpr double kLargestSizePerModelSide = 1.0;
 
 /// Edge length (m) of equilateral triangles that tile `area` (m^2) in `count` pieces.
-double equilateral_size(double area, double count) {
-  return std::sqrt(4.0 * area / (std::sqrt(3.0) * count));
-}
+double equilateral_size(double area, double count) { return std::sqrt(4.0 * area / (std::sqrt(3.0) * count)); }
 
 /// Sizing: h everywhere, graded down to about the slot width near the slot ends so that the
 /// short end faces do not make needle triangles.
@@ -46,9 +44,8 @@ class DiscSizing {
     gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
     if (model.slot_corners.empty()) return;
     const int distance = gmsh::model::mesh::field::add("Distance");
-    gmsh::model::mesh::field::setNumbers(
-        distance, "PointsList",
-        std::vector<double>(model.slot_corners.begin(), model.slot_corners.end()));
+    gmsh::model::mesh::field::setNumbers(distance, "PointsList",
+                                         std::vector<double>(model.slot_corners.begin(), model.slot_corners.end()));
     threshold_ = gmsh::model::mesh::field::add("Threshold");
     gmsh::model::mesh::field::setNumber(threshold_, "InField", distance);
     gmsh::model::mesh::field::setNumber(threshold_, "DistMin", 0.0);
@@ -61,8 +58,7 @@ class DiscSizing {
     const double end_size = std::min(size, kSlotEndSizePerWidth * model_.slot_width);
     gmsh::model::mesh::field::setNumber(threshold_, "SizeMin", end_size);
     gmsh::model::mesh::field::setNumber(threshold_, "SizeMax", size);
-    gmsh::model::mesh::field::setNumber(threshold_, "DistMax",
-                                        (size - end_size) / kSizeGrowthRate);
+    gmsh::model::mesh::field::setNumber(threshold_, "DistMax", (size - end_size) / kSizeGrowthRate);
   }
 
  private:
@@ -122,9 +118,10 @@ bool within(std::size_t count, const MeshControl& control) {
 
 void check_control(const MeshControl& control) {
   if (control.target_blocks < 1 || control.block_tolerance <= 0.0 || control.max_iterations < 1) {
-    throw MeshError(fmt::format("invalid mesh control: target_blocks {} tolerance {} "
-                                "max_iterations {}", control.target_blocks,
-                                control.block_tolerance, control.max_iterations));
+    throw MeshError(
+        fmt::format("invalid mesh control: target_blocks {} tolerance {} "
+                    "max_iterations {}",
+                    control.target_blocks, control.block_tolerance, control.max_iterations));
   }
 }
 
@@ -146,8 +143,10 @@ void require_all_quadrilaterals(const Mesh& mesh, double element_size) {
   constexpr std::size_t kQuadCorners = 4;
   for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
     if (mesh.cell_size(c) != kQuadCorners) {
-      throw MeshError(fmt::format("gmsh recombination left triangles at element size {} m; try "
-                                  "another size or triangles", element_size));
+      throw MeshError(
+          fmt::format("gmsh recombination left triangles at element size {} m; try "
+                      "another size or triangles",
+                      element_size));
     }
   }
 }
@@ -160,8 +159,7 @@ Mesh read_user_file(const MshFile& file, QualityReport* report) {
 
 }  // namespace
 
-Mesh generate_dda_mesh(const Geometry& geometry, const MeshControl& control,
-                       QualityReport* report) {
+Mesh generate_dda_mesh(const Geometry& geometry, const MeshControl& control, QualityReport* report) {
   if (const auto* file = std::get_if<MshFile>(&geometry)) return read_user_file(*file, report);
   check_control(control);
   detail::GmshSession session;
@@ -182,22 +180,21 @@ Mesh generate_dda_mesh(const Geometry& geometry, const MeshControl& control,
         return mesh;
       }
       if (search.at_floor(count))
-        throw MeshError(fmt::format("this geometry meshes into no fewer than about {} disc blocks (at element size "
-                                    "{:.3g} m, the largest for a disc of {:.3g} m^2{}); mesh.blocks = {} asks for fewer",
-                                    count, size, model.area,
-                                    model.slot_corners.empty() ? "" : ": the slot's graded ends alone take hundreds",
-                                    control.target_blocks));
+        throw MeshError(fmt::format(
+            "this geometry meshes into no fewer than about {} disc blocks (at element size "
+            "{:.3g} m, the largest for a disc of {:.3g} m^2{}); mesh.blocks = {} asks for fewer",
+            count, size, model.area, model.slot_corners.empty() ? "" : ": the slot's graded ends alone take hundreds",
+            control.target_blocks));
       search.record(count);
     }
-    throw MeshError(fmt::format("no element size gave {} +- {:.1f}% disc blocks in {} iterations "
-                                "(last: {} blocks at {:.3g} m)", control.target_blocks,
-                                100.0 * control.block_tolerance, control.max_iterations, count,
-                                size));
+    throw MeshError(
+        fmt::format("no element size gave {} +- {:.1f}% disc blocks in {} iterations "
+                    "(last: {} blocks at {:.3g} m)",
+                    control.target_blocks, 100.0 * control.block_tolerance, control.max_iterations, count, size));
   });
 }
 
-Mesh generate_fem_mesh(const Geometry& geometry, double element_size, FemCells cells,
-                       QualityReport* report) {
+Mesh generate_fem_mesh(const Geometry& geometry, double element_size, FemCells cells, QualityReport* report) {
   if (const auto* file = std::get_if<MshFile>(&geometry)) return read_user_file(*file, report);
   if (!(element_size > 0.0)) {
     throw MeshError(fmt::format("invalid FEM element size {} m", element_size));

@@ -15,8 +15,8 @@ ElementKind element_kind(int type) {
   ElementKind kind;
   int node_count = 0, primary_nodes = 0;
   std::vector<double> local_coords;
-  gmsh::model::mesh::getElementProperties(type, kind.name, kind.dim, kind.order, node_count,
-                                          local_coords, primary_nodes);
+  gmsh::model::mesh::getElementProperties(type, kind.name, kind.dim, kind.order, node_count, local_coords,
+                                          primary_nodes);
   return kind;
 }
 

@@ -8,17 +8,17 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
-#include <tuple>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "gmsh_session.hpp"
 #include "msh_model.hpp"
 #include "msh_text.hpp"
-#include "ddafrac/common/whole_file.hpp"
 
 namespace ddafrac::meshes {
 
@@ -66,15 +66,16 @@ void add_cells(const Mesh& mesh, const std::string& file) {
         for (std::size_t k = 0; k < corners; ++k) node_tags.push_back(tag_of(mesh.cell_begin(c)[k]));
       }
       if (!element_tags.empty()) {
-        gmsh::model::mesh::addElementsByType(static_cast<int>(tag_of(b)), type, element_tags,
-                                             node_tags);
+        gmsh::model::mesh::addElementsByType(static_cast<int>(tag_of(b)), type, element_tags, node_tags);
       }
     }
   }
   for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
     if (mesh.cell_size(c) != 3 && mesh.cell_size(c) != 4) {
-      throw MeshError(fmt::format("{}: cell {} has {} nodes; msh files hold triangles and "
-                                  "quadrilaterals only", file, c, mesh.cell_size(c)));
+      throw MeshError(
+          fmt::format("{}: cell {} has {} nodes; msh files hold triangles and "
+                      "quadrilaterals only",
+                      file, c, mesh.cell_size(c)));
     }
   }
 }
@@ -88,8 +89,7 @@ void add_boundary_edges(const Mesh& mesh) {
       element_tags.push_back(next_tag++);
       node_tags.insert(node_tags.end(), {tag_of(edge.a), tag_of(edge.b)});
     }
-    gmsh::model::mesh::addElementsByType(static_cast<int>(tag_of(g)), kLine2, element_tags,
-                                         node_tags);
+    gmsh::model::mesh::addElementsByType(static_cast<int>(tag_of(g)), kLine2, element_tags, node_tags);
   }
 }
 

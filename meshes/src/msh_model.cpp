@@ -29,8 +29,8 @@ std::vector<NamedGroup> named_groups(const MshModel& model, int dim, const std::
   for (int tag : tags) {
     const auto name = model.group_names.find({dim, tag});
     if (name == model.group_names.end() || name->second.empty()) {
-      throw MeshError(fmt::format("{}: physical {} group {} has no name; every group must be named",
-                                  source, dim == kSurfaceDim ? "surface" : "curve", tag));
+      throw MeshError(fmt::format("{}: physical {} group {} has no name; every group must be named", source,
+                                  dim == kSurfaceDim ? "surface" : "curve", tag));
     }
     groups.push_back({tag, name->second});
   }
@@ -44,8 +44,10 @@ std::map<std::size_t, Point> model_nodes(const MshModel& model, const std::strin
   std::map<std::size_t, Point> nodes;
   for (const auto& [tag, xyz] : model.nodes) {
     if (std::abs(xyz[2]) > kPlaneTolerance * extent) {
-      throw MeshError(fmt::format("{}: node {} lies off the plane z = 0 (z = {}); expected a 2D "
-                                  "mesh in the xy plane", source, tag, xyz[2]));
+      throw MeshError(
+          fmt::format("{}: node {} lies off the plane z = 0 (z = {}); expected a 2D "
+                      "mesh in the xy plane",
+                      source, tag, xyz[2]));
     }
     nodes.emplace_hint(nodes.end(), tag, Point{xyz[0], xyz[1]});
   }
@@ -93,8 +95,8 @@ class MeshAssembler {
     mesh.cell_body = std::move(cell_body_);
     for (const auto& [a, b, group] : edges_) {
       if (index_of.count(a) == 0 || index_of.count(b) == 0) {
-        throw MeshError(fmt::format("{}: boundary group \"{}\" has a line on nodes of no cell",
-                                    source_, boundaries[group]));
+        throw MeshError(
+            fmt::format("{}: boundary group \"{}\" has a line on nodes of no cell", source_, boundaries[group]));
       }
       mesh.boundary_edges.push_back({index_of.at(a), index_of.at(b), group});
     }
@@ -119,9 +121,8 @@ class MeshAssembler {
 void check_surface_membership(const MshModel& model, const std::string& source) {
   for (const auto& [key, entity] : model.entities) {
     if (key.first == kSurfaceDim && !entity.elements.empty() && entity.groups.size() != 1) {
-      throw MeshError(fmt::format(
-          "{}: surface {} with elements is in {} physical surface groups; expected exactly one",
-          source, key.second, entity.groups.size()));
+      throw MeshError(fmt::format("{}: surface {} with elements is in {} physical surface groups; expected exactly one",
+                                  source, key.second, entity.groups.size()));
     }
   }
 }
@@ -133,22 +134,22 @@ void check_element_kind(int type, const ElementKind& kind, const std::string& so
     throw MeshError(fmt::format("{}: holds 3D elements ({}); expected a 2D mesh", source, kind.name));
   }
   if (kind.order > 1) {
-    throw MeshError(fmt::format(
-        "{}: holds second-order (curved) elements ({}); expected linear triangles and "
-        "quadrilaterals", source, kind.name));
+    throw MeshError(
+        fmt::format("{}: holds second-order (curved) elements ({}); expected linear triangles and "
+                    "quadrilaterals",
+                    source, kind.name));
   }
   if (linear_node_count(type) == 0) {
-    throw MeshError(fmt::format(
-        "{}: holds unsupported {}D elements ({}); expected triangles and quadrilaterals", source,
-        kind.dim, kind.name));
+    throw MeshError(fmt::format("{}: holds unsupported {}D elements ({}); expected triangles and quadrilaterals",
+                                source, kind.dim, kind.name));
   }
 }
 
 Mesh mesh_from_model(const MshModel& model, const std::string& source) {
   const std::vector<NamedGroup> bodies = named_groups(model, kSurfaceDim, source);
   if (bodies.empty()) {
-    throw MeshError(fmt::format(
-        "{}: has no physical surface groups; every body must be a named physical surface", source));
+    throw MeshError(
+        fmt::format("{}: has no physical surface groups; every body must be a named physical surface", source));
   }
   const std::vector<NamedGroup> boundaries = named_groups(model, kCurveDim, source);
   check_surface_membership(model, source);
@@ -171,8 +172,7 @@ Mesh mesh_from_model(const MshModel& model, const std::string& source) {
     }
     boundary_names.push_back(boundary.name);
   }
-  Mesh mesh = assembler.finish(model_nodes(model, source), std::move(body_names),
-                               std::move(boundary_names));
+  Mesh mesh = assembler.finish(model_nodes(model, source), std::move(body_names), std::move(boundary_names));
   orient_cells_counter_clockwise(mesh, source);
   orient_boundary_edges(mesh, source);
   return mesh;

@@ -50,8 +50,8 @@ struct MshEntity {
 };
 
 struct MshModel {
-  std::map<std::size_t, std::array<double, 3>> nodes;  // x, y, z by node tag
-  std::map<std::pair<int, int>, MshEntity> entities;   // by (dim, tag)
+  std::map<std::size_t, std::array<double, 3>> nodes;      // x, y, z by node tag
+  std::map<std::pair<int, int>, MshEntity> entities;       // by (dim, tag)
   std::map<std::pair<int, int>, std::string> group_names;  // by (dim, physical tag)
 };
 

@@ -33,12 +33,12 @@ ElementKind element_kind(int type) {
     int order;
   };
   static constexpr std::array<Known, 19> kKnown{{
-      {1, "Line 2", 1, 1},           {2, "Triangle 3", 2, 1},       {3, "Quadrilateral 4", 2, 1},
-      {4, "Tetrahedron 4", 3, 1},    {5, "Hexahedron 8", 3, 1},     {6, "Prism 6", 3, 1},
-      {7, "Pyramid 5", 3, 1},        {8, "Line 3", 1, 2},           {9, "Triangle 6", 2, 2},
-      {10, "Quadrilateral 9", 2, 2}, {11, "Tetrahedron 10", 3, 2},  {12, "Hexahedron 27", 3, 2},
-      {13, "Prism 18", 3, 2},        {14, "Pyramid 14", 3, 2},      {15, "Point", 0, 0},
-      {16, "Quadrilateral 8", 2, 2}, {17, "Hexahedron 20", 3, 2},   {18, "Prism 15", 3, 2},
+      {1, "Line 2", 1, 1},           {2, "Triangle 3", 2, 1},      {3, "Quadrilateral 4", 2, 1},
+      {4, "Tetrahedron 4", 3, 1},    {5, "Hexahedron 8", 3, 1},    {6, "Prism 6", 3, 1},
+      {7, "Pyramid 5", 3, 1},        {8, "Line 3", 1, 2},          {9, "Triangle 6", 2, 2},
+      {10, "Quadrilateral 9", 2, 2}, {11, "Tetrahedron 10", 3, 2}, {12, "Hexahedron 27", 3, 2},
+      {13, "Prism 18", 3, 2},        {14, "Pyramid 14", 3, 2},     {15, "Point", 0, 0},
+      {16, "Quadrilateral 8", 2, 2}, {17, "Hexahedron 20", 3, 2},  {18, "Prism 15", 3, 2},
       {19, "Pyramid 13", 3, 2},
   }};
   for (const Known& known : kKnown) {
@@ -76,8 +76,7 @@ class MshText {
 
   /// An integer in [min, max]; `what` names it in messages.
   template <class T>
-  T integer(std::string_view what, T min = std::numeric_limits<T>::min(),
-            T max = std::numeric_limits<T>::max()) {
+  T integer(std::string_view what, T min = std::numeric_limits<T>::min(), T max = std::numeric_limits<T>::max()) {
     const std::string_view got = word(what);
     T value{};
     const auto [end, error] = std::from_chars(got.data(), got.data() + got.size(), value);
@@ -258,8 +257,10 @@ void read_nodes_2(MshText& in, MshModel& model) {
 int checked_element_type(MshText& in, int type) {
   const ElementKind kind = element_kind(type);
   if (kind.dim < 0) {
-    in.fail(fmt::format("element type {} is not one ddafrac reads; expected triangles ({}) and quadrangles ({}), "
-                        "lines ({}) and points ({})", type, kTriangle3, kQuadrangle4, kLine2, kPoint1));
+    in.fail(
+        fmt::format("element type {} is not one ddafrac reads; expected triangles ({}) and quadrangles ({}), "
+                    "lines ({}) and points ({})",
+                    type, kTriangle3, kQuadrangle4, kLine2, kPoint1));
   }
   check_element_kind(type, kind, in.where());
   return kind.dim;
@@ -292,8 +293,8 @@ void read_elements_41(MshText& in, MshModel& model) {
     const int type = in.integer<int>("an element type");
     const int element_dim = checked_element_type(in, type);
     if (element_dim != dim) {
-      in.fail(fmt::format("{} elements in {} {}; expected elements of dimension {} there",
-                          element_kind(type).name, entity_name(dim), tag, dim));
+      in.fail(fmt::format("{} elements in {} {}; expected elements of dimension {} there", element_kind(type).name,
+                          entity_name(dim), tag, dim));
     }
     const auto entity = model.entities.find({dim, tag});
     if (entity == model.entities.end()) {
@@ -350,7 +351,8 @@ MshModel parse_msh_text(std::string_view text, const std::string& source) {
   while (!in.at_end()) {
     const std::string_view header = in.word("a section such as $Nodes");
     if (header.size() < 2 || header.front() != '$' || header.rfind("$End", 0) == 0) {
-      in.fail(fmt::format("expected a section such as $Nodes or $Elements, got {:?}", header.substr(0, kMaxQuotedBytes)));
+      in.fail(
+          fmt::format("expected a section such as $Nodes or $Elements, got {:?}", header.substr(0, kMaxQuotedBytes)));
     }
     const std::string name(header.substr(1));
     if (!seen.insert(name).second) in.fail(fmt::format("a second ${} section", name));

@@ -10,23 +10,23 @@
 
 #include <fmt/format.h>
 
-#include "ddafrac/meshes/generate.hpp"
 #include "ddafrac/common/whole_file.hpp"
+#include "ddafrac/meshes/generate.hpp"
 
 namespace ddafrac::meshes {
 
 namespace {
 
-constexpr double kMarginPerWidth = 0.03;   // blank border, fraction of the picture width
-constexpr double kCellEdgePx = 0.5;        // line width of cell edges, pixels
-constexpr double kThickGroupPx = 3.0;      // line width of slit/joint faces, pixels
+constexpr double kMarginPerWidth = 0.03;  // blank border, fraction of the picture width
+constexpr double kCellEdgePx = 0.5;       // line width of cell edges, pixels
+constexpr double kThickGroupPx = 3.0;     // line width of slit/joint faces, pixels
 constexpr double kChannelMax = 255.0;
-constexpr std::array<Rgb, 6> kBodyPalette{{{222, 184, 135},   // disc: burlywood
-                                           {112, 128, 144},   // slate grey
-                                           {70, 130, 180},    // steel blue
-                                           {143, 188, 143},   // sea green
-                                           {218, 165, 32},    // goldenrod
-                                           {188, 143, 143}}}; // rosy brown
+constexpr std::array<Rgb, 6> kBodyPalette{{{222, 184, 135},    // disc: burlywood
+                                           {112, 128, 144},    // slate grey
+                                           {70, 130, 180},     // steel blue
+                                           {143, 188, 143},    // sea green
+                                           {218, 165, 32},     // goldenrod
+                                           {188, 143, 143}}};  // rosy brown
 constexpr Rgb kCellEdgeColour{60, 60, 60};
 constexpr Rgb kThickGroupColour{220, 20, 60};  // crimson
 constexpr std::array<const char*, 2> kThickGroups{"slit", "joint"};
@@ -48,8 +48,8 @@ Bounds bounds_of(const Mesh& mesh) {
 
 /// Maps model coordinates (m, y up) to pixels (y down), preserving the aspect ratio.
 struct View {
-  double scale = 1.0;  // px per m
-  double margin = 0.0; // px
+  double scale = 1.0;   // px per m
+  double margin = 0.0;  // px
   Bounds bounds;
   int width = 0, height = 0;
 
@@ -123,15 +123,13 @@ using Context = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
 
 Rgb body_colour(std::size_t body) { return kBodyPalette[body % kBodyPalette.size()]; }
 
-void write_mesh_png(const Mesh& mesh, const std::filesystem::path& path,
-                    const PictureOptions& options) {
+void write_mesh_png(const Mesh& mesh, const std::filesystem::path& path, const PictureOptions& options) {
   const View view(mesh, options.width_px);
   if (!(view.bounds.xmax > view.bounds.xmin) || view.width <= 2 * view.margin) {
-    throw MeshError(fmt::format("{}: nothing to draw ({} nodes, {} px wide)", path.string(),
-                                mesh.nodes.size(), options.width_px));
+    throw MeshError(
+        fmt::format("{}: nothing to draw ({} nodes, {} px wide)", path.string(), mesh.nodes.size(), options.width_px));
   }
-  Surface surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, view.width, view.height),
-                  &cairo_surface_destroy);
+  Surface surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, view.width, view.height), &cairo_surface_destroy);
   Context cr(cairo_create(surface.get()), &cairo_destroy);
   cairo_set_source_rgb(cr.get(), 1.0, 1.0, 1.0);
   cairo_paint(cr.get());
@@ -142,8 +140,7 @@ void write_mesh_png(const Mesh& mesh, const std::filesystem::path& path,
   common::write_whole_file(path, [&](const std::filesystem::path& temporary) {
     const cairo_status_t status = cairo_surface_write_to_png(surface.get(), temporary.c_str());
     if (status != CAIRO_STATUS_SUCCESS) {
-      throw MeshError(fmt::format("{}: cannot write PNG: {}", path.string(),
-                                  cairo_status_to_string(status)));
+      throw MeshError(fmt::format("{}: cannot write PNG: {}", path.string(), cairo_status_to_string(status)));
     }
   });
 }

@@ -10,10 +10,10 @@
 #include <cmath>
 #include <sstream>
 
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/scene/defaults.hpp"
 #include "document.hpp"
 #include "toml_reader.hpp"
-#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::scene {
 
@@ -68,8 +68,9 @@ std::vector<std::string> names_of(const std::vector<JointSet>& v) {
 /// Refuses an interval that cuts end_time into more than `most` pieces, saying the smallest one.
 void check_interval_count(TableReader& t, std::string_view key, double interval, double end_time, double most) {
   if (!(interval > 0 && end_time > 0) || end_time / interval <= most) return;
-  t.problem(key, fmt::format("makes {:.3g} intervals of analysis.end_time ({:g} s), more than {:g}: use at least {:.3g} s",
-                             end_time / interval, end_time, most, end_time / most));
+  t.problem(key,
+            fmt::format("makes {:.3g} intervals of analysis.end_time ({:g} s), more than {:g}: use at least {:.3g} s",
+                        end_time / interval, end_time, most, end_time / most));
 }
 
 Analysis parse_analysis(TableReader t) {
@@ -88,10 +89,11 @@ Analysis parse_analysis(TableReader t) {
   if (auto n = t.integer("open_close_max", 1, 50, Need::Optional)) a.open_close_max = static_cast<int>(*n);
   if (auto solver = t.choice("solver", {"pcg", "direct"}, Need::Optional))
     a.solver = *solver == "direct" ? Solver::Direct : Solver::Pcg;
-  if (auto f = t.number("search_distance_factor", NumberRule::positive("contact search distance / allowed step displacement"),
-                        Need::Optional))
+  if (auto f = t.number("search_distance_factor",
+                        NumberRule::positive("contact search distance / allowed step displacement"), Need::Optional))
     a.search_distance_factor = *f;
-  if (auto f = t.number("pair_list_skin_factor", NumberRule::non_negative("pair-list skin / search distance"), Need::Optional))
+  if (auto f = t.number("pair_list_skin_factor", NumberRule::non_negative("pair-list skin / search distance"),
+                        Need::Optional))
     a.pair_list_skin_factor = *f;
   if (a.end_time > 0 && a.output_interval > a.end_time)
     t.problem("output_interval", fmt::format("must not exceed analysis.end_time ({:g} s)", a.end_time));
@@ -174,14 +176,16 @@ ParsedGeometry parse_geometry(TableReader t, const std::filesystem::path& scene_
     meshes::PlainDisc g;
     g.diameter = diameter;
     g.load_half_angle =
-        kDegree * t.number("load_half_angle", NumberRule::half_open(0.0, 90.0, "degrees"), Need::Optional).value_or(0.0);
+        kDegree *
+        t.number("load_half_angle", NumberRule::half_open(0.0, 90.0, "degrees"), Need::Optional).value_or(0.0);
     out.geometry = g;
     out.bodies = {"disc"};
   } else if (generator == "flattened_disc") {
     meshes::FlattenedDisc g;
     g.diameter = diameter;
     g.flat_angle = kDegree * t.number("flat_angle", NumberRule::open(0.0, 180.0, "degrees, central angle of each flat"),
-                                      Need::Required).value_or(0.0);
+                                      Need::Required)
+                                 .value_or(0.0);
     g.with_platens = t.boolean("platens", Need::Optional).value_or(true);
     g.platen_thickness =
         t.number("platen_thickness", NumberRule::positive("m"), g.with_platens ? Need::Required : Need::Optional)
@@ -201,10 +205,11 @@ ParsedGeometry parse_geometry(TableReader t, const std::filesystem::path& scene_
   } else if (generator == "impact_disc") {
     meshes::ImpactDisc g;
     g.diameter = diameter;
-    g.joint_angle = kDegree * t.number("joint_angle", NumberRule::any("degrees, joint-slope angle θ"), Need::Required)
-                                  .value_or(0.0);
-    g.connectivity = t.number("connectivity", NumberRule::open(0.0, 1.0, "γ = joint length / diameter"),
-                              Need::Required).value_or(0.0);
+    g.joint_angle =
+        kDegree *
+        t.number("joint_angle", NumberRule::any("degrees, joint-slope angle θ"), Need::Required).value_or(0.0);
+    g.connectivity = t.number("connectivity", NumberRule::open(0.0, 1.0, "γ = joint length / diameter"), Need::Required)
+                         .value_or(0.0);
     g.joint_width = t.number("joint_width", NumberRule::positive("m"), Need::Required).value_or(0.0);
     g.plate_width = t.number("plate_width", NumberRule::positive("m"), Need::Required).value_or(0.0);
     g.plate_height = t.number("plate_height", NumberRule::positive("m"), Need::Required).value_or(0.0);
@@ -269,9 +274,9 @@ void check_bodies(TableReader& t, const std::vector<Body>& bodies, const std::ve
   for (const Body& body : bodies) {
     if (std::find(expected.begin(), expected.end(), body.name) == expected.end()) {
       const std::string hint = detail::closest_match(body.name, expected);
-      t.problem(body.name, fmt::format("{} has no body of this name; its bodies are: {}{}", origin,
-                                       fmt::join(expected, ", "),
-                                       hint.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", hint)));
+      t.problem(body.name,
+                fmt::format("{} has no body of this name; its bodies are: {}{}", origin, fmt::join(expected, ", "),
+                            hint.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", hint)));
     }
   }
   for (const std::string& name : expected) {
@@ -305,10 +310,12 @@ Output parse_output(TableReader t, double end_time) {
   Output out;
   out.vtk = t.boolean("vtk", Need::Optional).value_or(out.vtk);
   out.figures = t.boolean("figures", Need::Optional).value_or(out.figures);
-  out.crack_interval = t.number("crack_interval", NumberRule::positive("s"), Need::Optional).value_or(out.crack_interval);
+  out.crack_interval =
+      t.number("crack_interval", NumberRule::positive("s"), Need::Optional).value_or(out.crack_interval);
   check_interval_count(t, "crack_interval", out.crack_interval, end_time, kMaxCrackIntervals);
   // Times past the end of a (shortened) run are drawn at the last snapshot, not refused.
-  out.figure_times = t.numbers("figure_times", NumberRule::non_negative("s"), Need::Optional).value_or(std::vector<double>{});
+  out.figure_times =
+      t.numbers("figure_times", NumberRule::non_negative("s"), Need::Optional).value_or(std::vector<double>{});
   t.reject_unknown_keys();
   return out;
 }
@@ -340,7 +347,8 @@ Scene parse_document(const toml::table& document, const std::filesystem::path& f
   scene.joint_sets = parse_joint_sets(top.table("joints", Need::Required), scene.analysis.penalty);
 
   TableReader contacts = top.table("contacts", Need::Required);
-  scene.real_joints = contacts.reference("real_joints", names_of(scene.joint_sets), "joint sets", Need::Required).value_or(0);
+  scene.real_joints =
+      contacts.reference("real_joints", names_of(scene.joint_sets), "joint sets", Need::Required).value_or(0);
   contacts.reject_unknown_keys();
 
   ParsedGeometry geometry = parse_geometry(top.table("geometry", Need::Required), file);

@@ -67,7 +67,11 @@ constexpr std::size_t kMaxNameBytes = 64;
 std::size_t utf8_sequence_length(std::string_view text, std::size_t i) {
   const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
   const unsigned char lead = byte(i);
-  const std::size_t length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xe ? 3 : (lead >> 3) == 0x1e ? 4 : 0;
+  const std::size_t length = lead < 0x80           ? 1
+                             : (lead >> 5) == 0x6  ? 2
+                             : (lead >> 4) == 0xe  ? 3
+                             : (lead >> 3) == 0x1e ? 4
+                                                   : 0;
   if (length == 0 || i + length > text.size()) return 0;
   for (std::size_t k = 1; k < length; ++k)
     if ((byte(i + k) >> 6) != 0x2) return 0;
@@ -93,7 +97,8 @@ std::string name_problem(std::string_view name) {
   constexpr std::string_view kRule =
       "a name of letters, digits, spaces and _ - . + ( ), not starting with a dot or a space";
   if (name.empty()) return fmt::format("expected {}, got an empty string", kRule);
-  if (name.size() > kMaxNameBytes) return fmt::format("expected {}, at most {} bytes long, got {} bytes", kRule, kMaxNameBytes, name.size());
+  if (name.size() > kMaxNameBytes)
+    return fmt::format("expected {}, at most {} bytes long, got {} bytes", kRule, kMaxNameBytes, name.size());
   for (std::size_t i = 0; i < name.size();) {
     const std::size_t length = utf8_sequence_length(name, i);
     if (length == 0) return "not valid UTF-8 (byte " + std::to_string(i + 1) + ")";
@@ -126,8 +131,8 @@ bool NumberRule::admits(double v) const {
 std::string NumberRule::describe() const {
   std::string range;
   if (min && max) {
-    range = fmt::format(" in {}{}, {}{}", min_open ? '(' : '[', format_number(*min),
-                        format_number(*max), max_open ? ')' : ']');
+    range = fmt::format(" in {}{}, {}{}", min_open ? '(' : '[', format_number(*min), format_number(*max),
+                        max_open ? ')' : ']');
   } else if (min) {
     range = fmt::format(" {} {}", min_open ? ">" : ">=", format_number(*min));
   } else if (max) {
@@ -141,7 +146,8 @@ std::string closest_match(std::string_view word, const std::vector<std::string>&
   if (word.size() >= kMinPrefixLength) {
     std::vector<std::string> extensions;
     for (const auto& candidate : candidates)
-      if (candidate.size() > word.size() && candidate.compare(0, word.size(), word) == 0) extensions.push_back(candidate);
+      if (candidate.size() > word.size() && candidate.compare(0, word.size(), word) == 0)
+        extensions.push_back(candidate);
     if (extensions.size() == 1) return extensions.front();
   }
   std::string best;
@@ -187,8 +193,7 @@ const toml::node* TableReader::find(std::string_view key, Need need, const std::
 }
 
 void TableReader::wrong_type(std::string_view key, const toml::node& node, const std::string& expected) {
-  diagnostics_->report(node.source(), path_of(key),
-                       fmt::format("expected {}, got {}", expected, type_name(node)));
+  diagnostics_->report(node.source(), path_of(key), fmt::format("expected {}, got {}", expected, type_name(node)));
 }
 
 std::optional<double> TableReader::number(std::string_view key, const NumberRule& rule, Need need) {
@@ -316,8 +321,7 @@ std::optional<std::vector<double>> TableReader::numbers(std::string_view key, co
   return out;
 }
 
-std::optional<std::vector<std::string>> TableReader::strings(std::string_view key, const std::string& what,
-                                                             Need need) {
+std::optional<std::vector<std::string>> TableReader::strings(std::string_view key, const std::string& what, Need need) {
   const std::string expected = "an array of strings (" + what + ")";
   const auto* array = find_as<toml::array>(key, need, expected);
   if (!array) return std::nullopt;
@@ -385,9 +389,10 @@ void TableReader::reject_unknown_keys() {
     const std::string name(k.str());
     if (asked_.count(name)) continue;
     const std::string hint = closest_match(name, known);
-    diagnostics_->report(k.source().begin.line ? k.source() : v.source(), path_of(name),
-                         fmt::format("unknown key{}", hint.empty() ? fmt::format("; valid keys here: {}", quoted_list(known))
-                                                                  : fmt::format("; did you mean \"{}\"?", hint)));
+    diagnostics_->report(
+        k.source().begin.line ? k.source() : v.source(), path_of(name),
+        fmt::format("unknown key{}", hint.empty() ? fmt::format("; valid keys here: {}", quoted_list(known))
+                                                  : fmt::format("; did you mean \"{}\"?", hint)));
   }
 }
 

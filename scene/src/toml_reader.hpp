@@ -53,7 +53,9 @@ struct NumberRule {
   static NumberRule non_negative(std::string unit) { return {0.0, std::nullopt, false, false, std::move(unit)}; }
   static NumberRule any(std::string unit) { return {std::nullopt, std::nullopt, false, false, std::move(unit)}; }
   static NumberRule open(double lo, double hi, std::string unit = "") { return {lo, hi, true, true, std::move(unit)}; }
-  static NumberRule half_open(double lo, double hi, std::string unit = "") { return {lo, hi, false, true, std::move(unit)}; }
+  static NumberRule half_open(double lo, double hi, std::string unit = "") {
+    return {lo, hi, false, true, std::move(unit)};
+  }
 };
 
 /// Why `name` cannot name an output, or "" if it can. Scene, body and gauge names become folder
@@ -71,8 +73,7 @@ std::string closest_match(std::string_view word, const std::vector<std::string>&
 class TableReader {
  public:
   /// `table` may be null (a missing optional table): every read then yields nothing.
-  TableReader(const toml::table* table, std::string path, const toml::source_region& where,
-              Diagnostics& diagnostics);
+  TableReader(const toml::table* table, std::string path, const toml::source_region& where, Diagnostics& diagnostics);
 
   std::optional<double> number(std::string_view key, const NumberRule& rule, Need need);
   std::optional<long long> integer(std::string_view key, long long min, long long max, Need need);
@@ -83,8 +84,7 @@ class TableReader {
   /// `key` as a name; without it, the stem of `file`, which must then be a valid name itself.
   std::string name_or_file_stem(std::string_view key, const std::filesystem::path& file);
   /// A string that must be one of `options`.
-  std::optional<std::string> choice(std::string_view key, const std::vector<std::string>& options,
-                                    Need need);
+  std::optional<std::string> choice(std::string_view key, const std::vector<std::string>& options, Need need);
   /// A reference by name to an entry of another table (e.g. a material).
   std::optional<std::size_t> reference(std::string_view key, const std::vector<std::string>& names,
                                        std::string_view what, Need need);

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "ddafrac/reference/analytic.hpp"
 #include "ddafrac/common/angles.hpp"
+#include "ddafrac/reference/analytic.hpp"
 
 using namespace ddafrac::reference;
 

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "ddafrac/reference/compare.hpp"
 #include "ddafrac/common/angles.hpp"
+#include "ddafrac/reference/compare.hpp"
 
 using namespace ddafrac::reference;
 

@@ -32,8 +32,8 @@ BOOST_AUTO_TEST_CASE(every_joint_set_gets_kn_from_the_ratio_and_keeps_its_own_sh
     const auto& before = s.joint_sets[k];
     const auto& after = twin.scene.joint_sets[k];
     BOOST_TEST(after.normal_stiffness == 10.0 * young);
-    BOOST_TEST(after.shear_stiffness / after.normal_stiffness ==
-               before.shear_stiffness / before.normal_stiffness, boost::test_tools::tolerance(1e-15));
+    BOOST_TEST(after.shear_stiffness / after.normal_stiffness == before.shear_stiffness / before.normal_stiffness,
+               boost::test_tools::tolerance(1e-15));
   }
   BOOST_TEST(twin.kn == 10.0 * young);
   BOOST_TEST(twin.scene.analysis.penalty == twin.kn);
@@ -47,7 +47,8 @@ BOOST_AUTO_TEST_CASE(only_the_virtual_joints_become_unbreakable_and_gravity_is_o
   const coupling::DdaTwin twin = coupling::bonded_dda_twin(s, 100.0);
   BOOST_TEST(std::isinf(twin.scene.joint_sets.at(virtual_set).tensile_strength));
   BOOST_TEST(std::isinf(twin.scene.joint_sets.at(virtual_set).cohesion));
-  BOOST_TEST(twin.scene.joint_sets.at(s.real_joints).tensile_strength == s.joint_sets.at(s.real_joints).tensile_strength);
+  BOOST_TEST(twin.scene.joint_sets.at(s.real_joints).tensile_strength ==
+             s.joint_sets.at(s.real_joints).tensile_strength);
   BOOST_TEST(twin.scene.analysis.gravity[1] == 0.0);
 }
 

@@ -33,8 +33,8 @@ StabilityCase study_case(const std::string& name) {
 void check_stable(const StabilityResult& r, const StabilityCase& c) {
   BOOST_TEST_MESSAGE(r.name << ": " << r.blocks << " blocks, " << r.steps << " steps, E/S max " << r.energy_ratio
                             << ", penetration " << r.penetration_max << " of " << r.penetration_allowed << " m, cuts "
-                            << r.cuts_displacement << "/" << r.cuts_open_close << "/" << r.cuts_solver << ", "
-                            << r.wall << " s: " << r.verdict_text);
+                            << r.cuts_displacement << "/" << r.cuts_open_close << "/" << r.cuts_solver << ", " << r.wall
+                            << " s: " << r.verdict_text);
   BOOST_TEST(r.exit_status == 0, r.message);
   BOOST_TEST(!r.nan);
   BOOST_TEST(r.end_reached);

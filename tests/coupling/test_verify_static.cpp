@@ -67,9 +67,10 @@ BOOST_AUTO_TEST_CASE(centre_stresses_and_field_error_converge) {
   const Outcome fine = run(2000, 1, "fine");
   for (const Outcome* o : {&coarse, &fine}) {
     const auto& c = o->comparison;
-    BOOST_TEST_MESSAGE("blocks " << c["blocks"] << ", steps " << c["steps"] << ": centre error vs FEM " << c["centre_error_fem"]
-                                 << ", vs Hondros " << c["centre_error_analytic"] << "; L2 vs FEM " << c["field_l2_fem"]["all"]
-                                 << ", vs Hondros " << c["field_l2_analytic"]["all"] << "; anchor force " << c["anchor_force"]
+    BOOST_TEST_MESSAGE("blocks " << c["blocks"] << ", steps " << c["steps"] << ": centre error vs FEM "
+                                 << c["centre_error_fem"] << ", vs Hondros " << c["centre_error_analytic"]
+                                 << "; L2 vs FEM " << c["field_l2_fem"]["all"] << ", vs Hondros "
+                                 << c["field_l2_analytic"]["all"] << "; anchor force " << c["anchor_force"]
                                  << " N/m; last step ratio " << c["last_step_ratio"]);
     BOOST_TEST(c["kn_over_E"].get<double>() == 10.0, boost::test_tools::tolerance(1e-12));
     for (int k = 0; k < 2; ++k) {

@@ -32,8 +32,7 @@ inline scene::Scene basic_scene(scene::Mode mode, double dt, double penalty, sce
   return s;
 }
 
-inline scene::Body body(const std::string& name, scene::Motion motion = scene::Motion::Free,
-                        std::size_t material = 0) {
+inline scene::Body body(const std::string& name, scene::Motion motion = scene::Motion::Free, std::size_t material = 0) {
   scene::Body b;
   b.name = name;
   b.motion = motion;

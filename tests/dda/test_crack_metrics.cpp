@@ -19,9 +19,9 @@ using namespace ddafrac::dda;
 
 namespace {
 
-constexpr int kCells = 4;       // the grid is kCells × kCells squares
-constexpr double kSide = 0.25;  // m, a square's side: a power of two, so every sum below is exact
-constexpr double kCellArea = kSide * kSide;           // m²
+constexpr int kCells = 4;                    // the grid is kCells × kCells squares
+constexpr double kSide = 0.25;               // m, a square's side: a power of two, so every sum below is exact
+constexpr double kCellArea = kSide * kSide;  // m²
 constexpr double kBodyArea = kCells * kCells * kCellArea;  // m²
 
 /// One body of kCells × kCells squares sharing their nodes (block = row · kCells + column),
@@ -140,7 +140,8 @@ BOOST_AUTO_TEST_CASE(crack_events_give_the_history_and_the_first_through_going_c
   };
   for (const Index k : corner_cut(b)) event(kCornerTime, k, CrackType::Tensile);  // both in one step
   const std::vector<Index> line = vertical_cut(b);
-  for (std::size_t i = 0; i < line.size(); ++i) event(kLineStart + static_cast<double>(i) * kLineStep, line[i], CrackType::Shear);
+  for (std::size_t i = 0; i < line.size(); ++i)
+    event(kLineStart + static_cast<double>(i) * kLineStep, line[i], CrackType::Shear);
   const double last = kLineStart + (kCells - 1) * kLineStep;  // s, the line's last joint
 
   const std::vector<double> times = {last, 0.0, kCornerTime, last - kLineStep / 2};  // any order

@@ -8,11 +8,11 @@
 #include <cmath>
 #include <vector>
 
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/dda/contact_mechanics.hpp"
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/dda/synthetic.hpp"
 #include "support.hpp"
-#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac;
 using namespace ddafrac::dda;
@@ -58,7 +58,8 @@ double rigid_slide_off_rotation(const SlideOff& p) {
     fy = -mass * kG;
     m = 0.0;
     const double c = std::cos(th), s = std::sin(th);
-    const std::array<std::array<double, 2>, 4> corners{{{-p.half, -p.half}, {p.half, -p.half}, {p.half, p.half}, {-p.half, p.half}}};
+    const std::array<std::array<double, 2>, 4> corners{
+        {{-p.half, -p.half}, {p.half, -p.half}, {p.half, p.half}, {-p.half, p.half}}};
     for (const auto& k : corners) {  // a corner below the slab's top face, over the slab
       const double rx = c * k[0] - s * k[1], ry = s * k[0] + c * k[1];
       const double px = x + rx, py = y + ry;
@@ -72,7 +73,10 @@ double rigid_slide_off_rotation(const SlideOff& p) {
     const double depth = p.half - std::max(std::abs(qx), std::abs(qy));
     if (depth <= 0.0) return;
     double nx = 0.0, ny = 0.0;  // push direction on the block, block frame
-    if (std::abs(qy) >= std::abs(qx)) ny = qy > 0.0 ? -1.0 : 1.0; else nx = qx > 0.0 ? -1.0 : 1.0;
+    if (std::abs(qy) >= std::abs(qx))
+      ny = qy > 0.0 ? -1.0 : 1.0;
+    else
+      nx = qx > 0.0 ? -1.0 : 1.0;
     const double fxb = p.kn * depth * nx, fyb = p.kn * depth * ny;
     const double gx = c * fxb - s * fyb, gy = s * fxb + c * fyb;
     fx += gx;
@@ -127,8 +131,8 @@ BOOST_AUTO_TEST_CASE(block_sliding_off_an_edge_tips_like_a_rigid_body) {
     while (e.time() < p.end_time * (1.0 - 1e-12)) e.step(p.end_time - e.time());
     const double got = block_angle(e, 0);
     BOOST_TEST_MESSAGE("slide-off rotation at " << p.end_time << " s, allowed step " << allowed << " m: DDA "
-                                                 << got / kDegree << "°, rigid reference " << reference / kDegree
-                                                 << "°, largest balance error " << e.ledger().largest_balance_error);
+                                                << got / kDegree << "°, rigid reference " << reference / kDegree
+                                                << "°, largest balance error " << e.ledger().largest_balance_error);
     BOOST_TEST(e.ledger().largest_balance_error <= 1e-3);
     error.push_back(std::abs(got - reference));
   }
@@ -193,8 +197,8 @@ namespace {
 /// Six triangles around the node (0, 0) (a hexagon of circumradius r, one body with virtual
 /// joints), between a fixed bottom platen and a top platen pressed down at `speed`.
 struct Fan {
-  double r = 0.01;         // m
-  double speed = 2.0;      // m/s, top platen
+  double r = 0.01;     // m
+  double speed = 2.0;  // m/s, top platen
   meshes::Mesh mesh;
   scene::Scene scene;
   Fan() {
@@ -262,10 +266,12 @@ BOOST_AUTO_TEST_CASE(fan_around_a_node_squeezed_to_failure_never_overlaps_unseen
     if (e.crack_counts().total > 0) ++steps_after_break;
     for (Index p = 0; p < 6; ++p)
       for (Index q = 0; q < 6; ++q)
-        if ((p - q + 6) % 6 >= 2 && (p - q + 6) % 6 <= 4) deepest = std::max(deepest, deepest_vertex_inside(e.blocks(), p, q));
+        if ((p - q + 6) % 6 >= 2 && (p - q + 6) % 6 <= 4)
+          deepest = std::max(deepest, deepest_vertex_inside(e.blocks(), p, q));
   }
   const EnergyLedger& l = e.ledger();
-  BOOST_TEST_MESSAGE("fan: " << e.crack_counts().total << " joints broken by t = " << e.time() << " s, deepest overlap of "
+  BOOST_TEST_MESSAGE("fan: " << e.crack_counts().total << " joints broken by t = " << e.time()
+                             << " s, deepest overlap of "
                              << "node-sharing triangles " << deepest << " m (allowed " << e.allowed_displacement()
                              << "), supports' work " << l.total.work_supports << " J/m, released by breaks "
                              << l.total.joint_breaks << ", largest balance error " << l.largest_balance_error);
@@ -323,11 +329,10 @@ BOOST_AUTO_TEST_CASE(fragment_hitting_its_parent_again_conserves_momentum_and_en
   }
   const EnergyLedger& l = e.ledger();
   const double fragment_speed = std::hypot(s.velocity[0][kU], s.velocity[0][kV]);
-  BOOST_TEST_MESSAGE("fragment: momentum error " << momentum_error << ", fragment speed after " << fragment_speed
-                                                 << " m/s, stored " << l.stored.stored() << " of " << l.initial
-                                                 << " J/m, friction " << l.total.friction << ", numerical "
-                                                 << l.total.numerical << ", largest balance error "
-                                                 << l.largest_balance_error);
+  BOOST_TEST_MESSAGE("fragment: momentum error "
+                     << momentum_error << ", fragment speed after " << fragment_speed << " m/s, stored "
+                     << l.stored.stored() << " of " << l.initial << " J/m, friction " << l.total.friction
+                     << ", numerical " << l.total.numerical << ", largest balance error " << l.largest_balance_error);
   BOOST_TEST(s.velocity[0][kU] * std::cos(bisector) + s.velocity[0][kV] * std::sin(bisector) > 0.0);  // it bounced
   BOOST_TEST(momentum_error <= 1e-9);
   BOOST_TEST(l.largest_balance_error <= 0.01);

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/dda/synthetic.hpp"
 #include "support.hpp"
-#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac;
 using namespace ddafrac::dda;
@@ -169,10 +169,8 @@ BOOST_AUTO_TEST_CASE(type_follows_the_larger_ratio) {
     BOOST_TEST_MESSAGE("c = " << cohesion << " Pa: r1 " << c.r1 << ", r2 " << c.r2 << ", " << to_string(c.type));
     BOOST_TEST(c.r1 > 1.0);
     BOOST_TEST(c.r2 > 1.0);
-    BOOST_TEST(static_cast<int>(c.type) ==
-               static_cast<int>(c.r1 > c.r2 ? CrackType::Tensile : CrackType::Shear));
-    BOOST_TEST(static_cast<int>(c.type) ==
-               static_cast<int>(cohesion > 1e2 ? CrackType::Tensile : CrackType::Shear));
+    BOOST_TEST(static_cast<int>(c.type) == static_cast<int>(c.r1 > c.r2 ? CrackType::Tensile : CrackType::Shear));
+    BOOST_TEST(static_cast<int>(c.type) == static_cast<int>(cohesion > 1e2 ? CrackType::Tensile : CrackType::Shear));
   }
 }
 
@@ -222,7 +220,8 @@ double effective_modulus(double young, double kn) {
     for (auto k = mesh.cell_offsets[c]; k < mesh.cell_offsets[c + 1]; ++k) {
       const auto& p = mesh.nodes[static_cast<std::size_t>(mesh.cell_nodes[static_cast<std::size_t>(k)])];
       if (p.x == length)
-        opt.point_loads.push_back({static_cast<Index>(c), p.x, p.y, sigma * height / static_cast<double>(right_vertices.size()), 0.0});
+        opt.point_loads.push_back(
+            {static_cast<Index>(c), p.x, p.y, sigma * height / static_cast<double>(right_vertices.size()), 0.0});
     }
   Engine e(sc, mesh, opt);
   const std::vector<double> x0 = e.blocks().vx;
@@ -254,8 +253,8 @@ BOOST_AUTO_TEST_CASE(glued_bar_effective_modulus) {
   const double e10 = effective_modulus(young, 10.0 * young);
   const double e100 = effective_modulus(young, 100.0 * young);
   const double deficit10 = young / e10 - 1.0, deficit100 = young / e100 - 1.0;
-  BOOST_TEST_MESSAGE("E_eff/E = " << e10 / young << " (kn = 10 E), " << e100 / young << " (kn = 100 E); α = "
-                                  << deficit10 * 10.0 << ", " << deficit100 * 100.0);
+  BOOST_TEST_MESSAGE("E_eff/E = " << e10 / young << " (kn = 10 E), " << e100 / young
+                                  << " (kn = 100 E); α = " << deficit10 * 10.0 << ", " << deficit100 * 100.0);
   BOOST_TEST(deficit10 > 0.0);
   BOOST_TEST(deficit100 > 0.0);
   BOOST_TEST(deficit10 <= 2.0 / 10.0);
@@ -364,7 +363,8 @@ BOOST_AUTO_TEST_CASE(real_joint_holds_tension_up_to_its_strength) {
   for (int k = 2; k <= 5000 && failed_at < 0; ++k) {
     e.step();
     const PairForce f = pair_force(e);
-    if (f.cohesive == 0) failed_at = k;
+    if (f.cohesive == 0)
+      failed_at = k;
     else {
       increment = f.tension - previous;
       previous = f.tension;
@@ -417,9 +417,9 @@ BOOST_AUTO_TEST_CASE(real_joint_holds_shear_up_to_cohesion_plus_friction) {
     }
   }
   BOOST_TEST_MESSAGE("cohesive shear: failed at step " << failed_at << ", peak |f_s|/limit " << peak_ratio
-                                                       << "; after: largest |f_s| - f_n·tanφ "
-                                                       << friction_excess << " N/m, " << sliding_steps
-                                                       << " sliding contact-steps within " << sliding_error);
+                                                       << "; after: largest |f_s| - f_n·tanφ " << friction_excess
+                                                       << " N/m, " << sliding_steps << " sliding contact-steps within "
+                                                       << sliding_error);
   BOOST_TEST_REQUIRE(failed_at > 1);
   BOOST_TEST(worst_excess <= 0.0);
   BOOST_TEST(peak_ratio >= 0.95);  // the shear did build up to the limit before failing

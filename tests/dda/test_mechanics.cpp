@@ -4,9 +4,9 @@
 
 #include <cmath>
 
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/dda/engine.hpp"
 #include "support.hpp"
-#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac;
 using namespace ddafrac::dda;
@@ -123,16 +123,18 @@ void uniaxial(scene::PlaneModel plane, double expected_ex, double expected_ey) {
   const double sigma = 1e3;  // Pa; h = 1 m so the edge force is σ·h
   EngineOptions o;
   o.allowed_displacement = 0.01;
-  o.point_loads = {{0, 1.0, 0.0, 0.5 * sigma, 0.0}, {0, 1.0, 1.0, 0.5 * sigma, 0.0},
-                   {0, 0.0, 0.0, -0.5 * sigma, 0.0}, {0, 0.0, 1.0, -0.5 * sigma, 0.0}};
+  o.point_loads = {{0, 1.0, 0.0, 0.5 * sigma, 0.0},
+                   {0, 1.0, 1.0, 0.5 * sigma, 0.0},
+                   {0, 0.0, 0.0, -0.5 * sigma, 0.0},
+                   {0, 0.0, 1.0, -0.5 * sigma, 0.0}};
   Engine e(s, m, o);
   for (int k = 0; k < 5; ++k) e.step();
   const auto& b = e.blocks();
   const double ex = 0.5 * ((b.vx[1] - b.vx[0]) + (b.vx[2] - b.vx[3])) - 1.0;
   const double ey = 0.5 * ((b.vy[3] - b.vy[0]) + (b.vy[2] - b.vy[1])) - 1.0;
-  BOOST_TEST_MESSAGE("uniaxial " << (plane == scene::PlaneModel::Stress ? "plane stress" : "plane strain")
-                                 << ": ex " << ex << " (expected " << expected_ex << "), ey " << ey << " (expected "
-                                 << expected_ey << "), σxx " << b.stress[0][0]);
+  BOOST_TEST_MESSAGE("uniaxial " << (plane == scene::PlaneModel::Stress ? "plane stress" : "plane strain") << ": ex "
+                                 << ex << " (expected " << expected_ex << "), ey " << ey << " (expected " << expected_ey
+                                 << "), σxx " << b.stress[0][0]);
   BOOST_TEST(std::abs(ex - expected_ex) <= 1e-6 * std::abs(expected_ex));
   BOOST_TEST(std::abs(ey - expected_ey) <= 1e-6 * std::abs(expected_ey));
   BOOST_TEST(std::abs(b.stress[0][0] - sigma) <= 1e-6 * sigma);
@@ -166,8 +168,7 @@ BOOST_AUTO_TEST_CASE(frictionless_collision_conserves_momentum) {
   Engine e(s, m, o);
   auto momentum = [&] {
     double p = 0.0;
-    for (std::size_t b = 0; b < 2; ++b)
-      p += e.blocks().mass[b] * e.blocks().velocity[b][kU];
+    for (std::size_t b = 0; b < 2; ++b) p += e.blocks().mass[b] * e.blocks().velocity[b][kU];
     return p;
   };
   const double p0 = momentum();

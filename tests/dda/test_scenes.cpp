@@ -40,7 +40,9 @@ BOOST_AUTO_TEST_CASE(default_scene_first_40us_without_dt_cuts) {
 
 // The default scene to its end (300 µs, 3000 steps). Before node-sharing triangles were paired at
 // their shared node it gained 8.2% by 250 µs through 16 749 contacts found already overlapping.
-BOOST_AUTO_TEST_CASE(default_scene_never_gains_energy) { testing::check_never_gains_energy(scene_file("scenes/default.toml")); }
+BOOST_AUTO_TEST_CASE(default_scene_never_gains_energy) {
+  testing::check_never_gains_energy(scene_file("scenes/default.toml"));
+}
 
 namespace {
 struct ImpactRun {
@@ -60,8 +62,8 @@ ImpactRun run_impact(const scene::Scene& sc, const meshes::Mesh& mesh, double en
 bool same_events(const std::vector<CrackEvent>& a, const std::vector<CrackEvent>& b) {
   if (a.size() != b.size()) return false;
   for (std::size_t k = 0; k < a.size(); ++k)
-    if (a[k].t != b[k].t || a[k].x != b[k].x || a[k].y != b[k].y || a[k].type != b[k].type || a[k].joint != b[k].joint ||
-        a[k].r1 != b[k].r1 || a[k].r2 != b[k].r2)
+    if (a[k].t != b[k].t || a[k].x != b[k].x || a[k].y != b[k].y || a[k].type != b[k].type ||
+        a[k].joint != b[k].joint || a[k].r1 != b[k].r1 || a[k].r2 != b[k].r2)
       return false;
   return true;
 }
@@ -174,16 +176,18 @@ BOOST_AUTO_TEST_CASE(reduced_flattened_disc_splits_along_the_loaded_diameter) {
   const double end = 0.6e-3;
   while (t_path < 0.0 && e.time() < end * (1.0 - 1e-9)) {
     const StepReport r = e.step(end - e.time());
-    if (r.new_cracks > 0 && t_path < 0.0 && crack_path(mesh, e.blocks().joints, band, y_flat, 2.0 * h)) t_path = e.time();
+    if (r.new_cracks > 0 && t_path < 0.0 && crack_path(mesh, e.blocks().joints, band, y_flat, 2.0 * h))
+      t_path = e.time();
   }
   // Narrowest band (steps of 0.01 D) that holds a path at the end.
   double narrowest = -1.0;
   for (int k = 1; k <= 50 && narrowest < 0.0; ++k)
     if (crack_path(mesh, e.blocks().joints, 0.01 * k * g.diameter, y_flat, 2.0 * h)) narrowest = 0.01 * k;
-  BOOST_TEST_MESSAGE("cracks " << e.crack_counts().total << " (" << e.crack_counts().tensile << " tensile); path in |x| <= 0.2 D at t = "
-                               << t_path * 1e6 << " µs; narrowest band holding a path: |x| <= " << narrowest << " D; dt cuts "
-                               << e.statistics().cuts_displacement + e.statistics().cuts_open_close << "; longest chain spans y = "
-                               << longest_chain(mesh, e.blocks().joints).first << " .. "
+  BOOST_TEST_MESSAGE("cracks " << e.crack_counts().total << " (" << e.crack_counts().tensile
+                               << " tensile); path in |x| <= 0.2 D at t = " << t_path * 1e6
+                               << " µs; narrowest band holding a path: |x| <= " << narrowest << " D; dt cuts "
+                               << e.statistics().cuts_displacement + e.statistics().cuts_open_close
+                               << "; longest chain spans y = " << longest_chain(mesh, e.blocks().joints).first << " .. "
                                << longest_chain(mesh, e.blocks().joints).second << " m (flats at ±" << y_flat << " m)");
   BOOST_TEST(t_path > 0.0);
   BOOST_TEST(narrowest > 0.0);

@@ -187,11 +187,10 @@ BOOST_AUTO_TEST_CASE(the_pair_list_changes_no_contact) {
       if (!same) ++mismatches;
     }
   }
-  BOOST_TEST_MESSAGE("pair-list builds over " << kSteps << " steps: default skin "
-                                                << reference.statistics().pair_list_builds << ", none "
-                                                << none.statistics().pair_list_builds << ", 4x skin "
-                                                << wide.statistics().pair_list_builds << "; cracks "
-                                                << reference.crack_counts().total);
+  BOOST_TEST_MESSAGE("pair-list builds over "
+                     << kSteps << " steps: default skin " << reference.statistics().pair_list_builds << ", none "
+                     << none.statistics().pair_list_builds << ", 4x skin " << wide.statistics().pair_list_builds
+                     << "; cracks " << reference.crack_counts().total);
   BOOST_TEST(mismatches == 0);
   BOOST_TEST(reference.crack_counts().total > 0);
   BOOST_TEST(none.statistics().pair_list_builds >= kSteps - 1);
@@ -305,7 +304,7 @@ BOOST_AUTO_TEST_CASE(pcg_matches_direct_solver) {
     norm = std::max(norm, b.last_displacement()[i].cwiseAbs().maxCoeff());
   }
   BOOST_TEST_MESSAGE("PCG vs LDLT: max |ΔD| " << diff << " of max |D| " << norm << ", CG iterations per solve "
-                                               << static_cast<double>(a.statistics().cg_total) / a.statistics().solves);
+                                              << static_cast<double>(a.statistics().cg_total) / a.statistics().solves);
   BOOST_TEST(diff <= 1e-8 * norm);
 }
 

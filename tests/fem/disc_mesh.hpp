@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "ddafrac/meshes/mesh.hpp"
 #include "ddafrac/common/angles.hpp"
+#include "ddafrac/meshes/mesh.hpp"
 
 namespace ddafrac::test {
 
@@ -99,8 +99,7 @@ inline meshes::Mesh split_into_quads(const meshes::Mesh& tri, double radius) {
     const auto g = static_cast<meshes::Index>(m.nodes.size());
     m.nodes.push_back({(tri.nodes[n[0]].x + tri.nodes[n[1]].x + tri.nodes[n[2]].x) / 3.0,
                        (tri.nodes[n[0]].y + tri.nodes[n[1]].y + tri.nodes[n[2]].y) / 3.0});
-    for (const auto& q : {std::array<meshes::Index, 4>{n[0], ab, g, ca},
-                          std::array<meshes::Index, 4>{n[1], bc, g, ab},
+    for (const auto& q : {std::array<meshes::Index, 4>{n[0], ab, g, ca}, std::array<meshes::Index, 4>{n[1], bc, g, ab},
                           std::array<meshes::Index, 4>{n[2], ca, g, bc}}) {
       for (auto v : q) m.cell_nodes.push_back(v);
       m.cell_offsets.push_back(static_cast<meshes::Index>(m.cell_nodes.size()));

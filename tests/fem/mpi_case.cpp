@@ -21,9 +21,9 @@ using namespace ddafrac;
 
 namespace {
 
-constexpr double diameter = 0.1;                              // m
+constexpr double diameter = 0.1;                             // m
 constexpr double half_angle = 10.0 * test::test_pi / 180.0;  // Hondros 2 alpha = 20 deg
-constexpr double load = 1.0e6;                                // N/m
+constexpr double load = 1.0e6;                               // N/m
 constexpr int coarse_rings = 6;
 constexpr int profile_points = 11;
 const reference::Elastic rock{10.53e9, 0.12, 2050.0};
@@ -47,8 +47,8 @@ void write_static(bool quads, std::ofstream& out) {
       out << fmt::format("{},{}{},txy,{:.17g}\n", kind, name, k++, q.stress.xy);
     }
   }
-  std::fprintf(stderr, "%s: %zu dofs, %d CG iterations, %.2f s\n", kind.c_str(), s.stats().dofs,
-               s.stats().iterations, s.stats().setup_seconds + s.stats().solve_seconds);
+  std::fprintf(stderr, "%s: %zu dofs, %d CG iterations, %.2f s\n", kind.c_str(), s.stats().dofs, s.stats().iterations,
+               s.stats().setup_seconds + s.stats().solve_seconds);
 }
 
 void write_dynamic(std::ofstream& out, const std::filesystem::path& snapshots) {
@@ -65,8 +65,7 @@ void write_dynamic(std::ofstream& out, const std::filesystem::path& snapshots) {
   p.dt = 0.1e-6;
   p.end_time = 6e-6;
   p.output_interval = 1e-6;
-  for (const double h : {0.003, 0.010, 0.020})
-    p.gauges.push_back({fmt::format("h{}", h), 0.0, -0.5 * diameter + h});
+  for (const double h : {0.003, 0.010, 0.020}) p.gauges.push_back({fmt::format("h{}", h), 0.0, -0.5 * diameter + h});
   p.gauges.push_back({"off_axis", 0.012, -0.02});
   p.snapshot_directory = snapshots;
   p.snapshot_interval = 2e-6;
@@ -77,10 +76,9 @@ void write_dynamic(std::ofstream& out, const std::filesystem::path& snapshots) {
     out << fmt::format("dynamic,{}@{:.3g},syy,{:.17g}\n", name, rec.t, rec.sample.stress.yy);
     out << fmt::format("dynamic,{}@{:.3g},txy,{:.17g}\n", name, rec.t, rec.sample.stress.xy);
   }
-  for (const auto& e : r.energy)
-    out << fmt::format("energy,{:.3g},total,{:.17g}\n", e.t, e.kinetic + e.strain);
-  std::fprintf(stderr, "dynamic: %zu dofs, %d steps, %s, %.2f s\n", r.stats.dofs, r.steps,
-               r.stats.solver.c_str(), r.stats.setup_seconds + r.stats.solve_seconds);
+  for (const auto& e : r.energy) out << fmt::format("energy,{:.3g},total,{:.17g}\n", e.t, e.kinetic + e.strain);
+  std::fprintf(stderr, "dynamic: %zu dofs, %d steps, %s, %.2f s\n", r.stats.dofs, r.steps, r.stats.solver.c_str(),
+               r.stats.setup_seconds + r.stats.solve_seconds);
 }
 
 }  // namespace

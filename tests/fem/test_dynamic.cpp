@@ -4,9 +4,9 @@
 #include <cmath>
 #include <vector>
 
-#include "ddafrac/reference/analytic.hpp"
 #include "ddafrac/fem/dynamic_problem.hpp"
 #include "ddafrac/meshes/generate.hpp"
+#include "ddafrac/reference/analytic.hpp"
 #include "fixture.hpp"
 
 using ddafrac::test::FemEnvironment;
@@ -16,13 +16,13 @@ using namespace ddafrac;
 
 namespace {
 
-constexpr double diameter = 0.1;            // m
-constexpr double patch_half_angle = 0.3;    // rad: a 30 mm patch, so that the front on the axis
-                                            // stays plane until the edge waves arrive
-constexpr double element_size = 0.0015;     // m
-constexpr double dt = 0.05e-6;              // s, c_p dt = 0.11 mm, well below h
-constexpr double end_time = 15e-6;          // s, before the joint/centre reflections return
-constexpr double v0 = 3.5;                  // m/s
+constexpr double diameter = 0.1;          // m
+constexpr double patch_half_angle = 0.3;  // rad: a 30 mm patch, so that the front on the axis
+                                          // stays plane until the edge waves arrive
+constexpr double element_size = 0.0015;   // m
+constexpr double dt = 0.05e-6;            // s, c_p dt = 0.11 mm, well below h
+constexpr double end_time = 15e-6;        // s, before the joint/centre reflections return
+constexpr double v0 = 3.5;                // m/s
 const reference::Elastic rock{10.53e9, 0.12, 2050.0};
 // Gauges on the vertical diameter, d above the lowest point (0, -R).
 const std::vector<double> heights{0.003, 0.010, 0.020, 0.030};
@@ -59,9 +59,8 @@ std::vector<std::pair<double, double>> history(const fem::DynamicResult& r, std:
 
 BOOST_AUTO_TEST_CASE(trapezoidal_newmark_waves_and_energy) {
   const auto r = fem::run_dynamic(impact({0.25, 0.5}));
-  BOOST_TEST_MESSAGE("dofs " << r.stats.dofs << ", steps " << r.steps << ", " << r.stats.solver
-                     << ", setup " << r.stats.setup_seconds << " s, run " << r.stats.solve_seconds
-                     << " s");
+  BOOST_TEST_MESSAGE("dofs " << r.stats.dofs << ", steps " << r.steps << ", " << r.stats.solver << ", setup "
+                             << r.stats.setup_seconds << " s, run " << r.stats.solve_seconds << " s");
   const double c_p = reference::p_wave_speed(rock, reference::PlaneModel::Stress);
   const double plane = reference::impact_plane_wave_stress(rock, reference::PlaneModel::Stress, v0);
 
@@ -74,8 +73,8 @@ BOOST_AUTO_TEST_CASE(trapezoidal_newmark_waves_and_energy) {
         break;
       }
     const double expected = heights[g] / c_p;
-    BOOST_TEST_MESSAGE("gauge at " << heights[g] * 1e3 << " mm: arrival " << arrival * 1e6
-                       << " us, d/c_p " << expected * 1e6 << " us");
+    BOOST_TEST_MESSAGE("gauge at " << heights[g] * 1e3 << " mm: arrival " << arrival * 1e6 << " us, d/c_p "
+                                   << expected * 1e6 << " us");
     if (g > 0) BOOST_TEST(std::abs(arrival / expected - 1.0) < 0.02);
   }
 
@@ -115,8 +114,8 @@ BOOST_AUTO_TEST_CASE(dda_newmark_dissipates) {
 // at depth d follows -sqrt(R / (R - d)) p(t - d / c_p) (the amplitude grows as the front
 // converges); once the pulse has ended, the trapezoidal rule conserves the energy it put in.
 BOOST_AUTO_TEST_CASE(pressure_pulse_plane_wave) {
-  constexpr double peak = 10e6;         // Pa
-  constexpr double duration = 4e-6;     // s: a 9 mm long half-sine, passes before edge waves
+  constexpr double peak = 10e6;            // Pa
+  constexpr double duration = 4e-6;        // s: a 9 mm long half-sine, passes before edge waves
   constexpr double pulse_end_time = 8e-6;  // s
   auto p = impact({0.25, 0.5});
   p.v0 = 0.0;
@@ -139,9 +138,9 @@ BOOST_AUTO_TEST_CASE(pressure_pulse_plane_wave) {
     const double centroid = moment / area;
     const double expected_t = heights[g] / c_p + 0.5 * duration;
     const double expected_s = -peak * std::sqrt(radius / (radius - heights[g]));
-    BOOST_TEST_MESSAGE("pulse, gauge at " << heights[g] * 1e3 << " mm: min syy " << s_min
-                       << " Pa (expected " << expected_s << "), centroid " << centroid * 1e6
-                       << " us (expected " << expected_t * 1e6 << ")");
+    BOOST_TEST_MESSAGE("pulse, gauge at " << heights[g] * 1e3 << " mm: min syy " << s_min << " Pa (expected "
+                                          << expected_s << "), centroid " << centroid * 1e6 << " us (expected "
+                                          << expected_t * 1e6 << ")");
     BOOST_TEST(std::abs(s_min / expected_s - 1.0) < 0.05);
     BOOST_TEST(std::abs(centroid / expected_t - 1.0) < 0.02);
   }

@@ -106,6 +106,5 @@ BOOST_AUTO_TEST_CASE(serial_and_two_ranks_agree) {
   BOOST_TEST(cells_serial.size() == 4u);
   BOOST_TEST(cells_np2 == cells_serial, boost::test_tools::per_element());
   for (const auto& [kind, w] : worst)
-    BOOST_TEST_MESSAGE(kind << ": largest |serial - np 2| / scale = " << w << " (scale "
-                            << scale[kind] << ")");
+    BOOST_TEST_MESSAGE(kind << ": largest |serial - np 2| / scale = " << w << " (scale " << scale[kind] << ")");
 }

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <vector>
 
-#include "ddafrac/reference/analytic.hpp"
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/fem/static_problem.hpp"
 #include "ddafrac/meshes/generate.hpp"
+#include "ddafrac/reference/analytic.hpp"
 #include "fixture.hpp"
-#include "ddafrac/common/angles.hpp"
 
 using ddafrac::test::FemEnvironment;
 BOOST_TEST_GLOBAL_FIXTURE(FemEnvironment);
@@ -18,10 +18,10 @@ using namespace ddafrac;
 namespace {
 
 constexpr double pi = ddafrac::common::kPi;
-constexpr double diameter = 0.1;              // m
+constexpr double diameter = 0.1;                  // m
 constexpr double flat_angle = 20.0 * pi / 180.0;  // central angle of each flat
-constexpr double element_size = 0.006;        // m, coarse gmsh mesh; refined by deal.II
-constexpr double pressure = 50.0e6;           // Pa on the top flat
+constexpr double element_size = 0.006;            // m, coarse gmsh mesh; refined by deal.II
+constexpr double pressure = 50.0e6;               // Pa on the top flat
 const reference::Elastic rock{10.53e9, 0.12, 2050.0};
 
 fem::StaticProblem flattened(fem::StaticLoad load, int refinements) {
@@ -55,10 +55,9 @@ BOOST_AUTO_TEST_CASE(flattened_disc_pressure_balances_reaction) {
   const auto centre = solution.stress_at(0.0, 0.0).stress;
   const auto arc = reference::flattened_disc_centre_arc_mapped({diameter, 1.0}, load, flat_angle);
   const double dxx = centre.xx / arc.xx - 1.0, dyy = centre.yy / arc.yy - 1.0;
-  BOOST_TEST_MESSAGE("flattened disc: dofs " << solution.stats().dofs << ", centre sxx "
-                     << centre.xx << " (arc-mapped " << arc.xx << ", " << 100 * dxx
-                     << "%), syy " << centre.yy << " (arc-mapped " << arc.yy << ", "
-                     << 100 * dyy << "%)");
+  BOOST_TEST_MESSAGE("flattened disc: dofs " << solution.stats().dofs << ", centre sxx " << centre.xx << " (arc-mapped "
+                                             << arc.xx << ", " << 100 * dxx << "%), syy " << centre.yy
+                                             << " (arc-mapped " << arc.yy << ", " << 100 * dyy << "%)");
   // The arc-mapped approximation is a few percent off a flat load (different load shape);
   // a larger gap would mean a wrong load or support.
   BOOST_TEST(std::abs(dxx) < 0.05);
@@ -95,8 +94,8 @@ BOOST_AUTO_TEST_CASE(slit_disc_tip_concentration_and_far_field) {
     const auto corner = solution.stress_at(along * c - across * s, along * s + across * c);
     tip_s1.push_back(std::max(std::abs(corner.s1), std::abs(corner.s3)));
     far_syy.push_back(solution.stress_at(0.03, -0.01).stress.yy);
-    BOOST_TEST_MESSAGE("slit disc k=" << k << " dofs " << solution.stats().dofs << " tip |s|max "
-                       << tip_s1.back() << " far syy " << far_syy.back());
+    BOOST_TEST_MESSAGE("slit disc k=" << k << " dofs " << solution.stats().dofs << " tip |s|max " << tip_s1.back()
+                                      << " far syy " << far_syy.back());
   }
   // The sharp slot corners are singular: the tip stress keeps growing with refinement.
   BOOST_TEST(tip_s1[1] > tip_s1[0]);

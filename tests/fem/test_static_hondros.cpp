@@ -6,8 +6,8 @@
 #include <iostream>
 #include <vector>
 
-#include "ddafrac/reference/analytic.hpp"
 #include "ddafrac/fem/static_problem.hpp"
+#include "ddafrac/reference/analytic.hpp"
 #include "disc_mesh.hpp"
 #include "fixture.hpp"
 
@@ -18,10 +18,10 @@ using namespace ddafrac;
 
 namespace {
 
-constexpr double diameter = 0.1;                       // m, the study's disc
+constexpr double diameter = 0.1;                             // m, the study's disc
 constexpr double half_angle = 10.0 * test::test_pi / 180.0;  // 2 alpha = 20 deg
-constexpr double load = 1.0e6;                         // N/m, nominal Hondros load P
-constexpr int coarse_rings = 6;                        // rim node every 10 deg: arc ends are nodes
+constexpr double load = 1.0e6;                               // N/m, nominal Hondros load P
+constexpr int coarse_rings = 6;                              // rim node every 10 deg: arc ends are nodes
 constexpr int profile_points = 201;
 
 const reference::Disc disc{diameter, 1.0};
@@ -69,15 +69,16 @@ Errors run(bool quads, int degree, int refinements) {
   Errors e;
   e.centre_xx = std::abs(c.stress.xx / exact_c.xx - 1.0);
   e.centre_yy = std::abs(c.stress.yy / exact_c.yy - 1.0);
-  e.loaded = profile_error(vertical, [](double y) { return reference::hondros_loaded_diameter(disc, hondros, y); }, true);
-  e.horizontal = profile_error(horizontal, [](double x) { return reference::hondros_horizontal_diameter(disc, hondros, x); }, false);
+  e.loaded = profile_error(
+      vertical, [](double y) { return reference::hondros_loaded_diameter(disc, hondros, y); }, true);
+  e.horizontal = profile_error(
+      horizontal, [](double x) { return reference::hondros_horizontal_diameter(disc, hondros, x); }, false);
   e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   e.dofs = solution.stats().dofs;
-  BOOST_TEST_MESSAGE((quads ? "quad" : "tri ") << " p=" << degree << " k=" << refinements
-                     << " dofs=" << e.dofs << " cg=" << solution.stats().iterations
-                     << " centre sxx " << e.centre_xx << " syy " << e.centre_yy
-                     << " L2 loaded " << e.loaded << " horizontal " << e.horizontal
-                     << " time " << e.seconds << " s");
+  BOOST_TEST_MESSAGE((quads ? "quad" : "tri ")
+                     << " p=" << degree << " k=" << refinements << " dofs=" << e.dofs
+                     << " cg=" << solution.stats().iterations << " centre sxx " << e.centre_xx << " syy " << e.centre_yy
+                     << " L2 loaded " << e.loaded << " horizontal " << e.horizontal << " time " << e.seconds << " s");
   return e;
 }
 
@@ -90,9 +91,9 @@ std::vector<Errors> study(bool quads, int degree, int levels) {
   std::vector<Errors> e;
   for (int k = 0; k <= levels; ++k) e.push_back(run(quads, degree, k));
   for (std::size_t i = 1; i < e.size(); ++i)
-    BOOST_TEST_MESSAGE("  observed order: loaded " << order(e[i - 1].loaded, e[i].loaded)
-                       << ", horizontal " << order(e[i - 1].horizontal, e[i].horizontal)
-                       << ", centre sxx " << order(e[i - 1].centre_xx, e[i].centre_xx));
+    BOOST_TEST_MESSAGE("  observed order: loaded " << order(e[i - 1].loaded, e[i].loaded) << ", horizontal "
+                                                   << order(e[i - 1].horizontal, e[i].horizontal) << ", centre sxx "
+                                                   << order(e[i - 1].centre_xx, e[i].centre_xx));
   return e;
 }
 
@@ -106,7 +107,7 @@ BOOST_AUTO_TEST_CASE(triangles_degree2) {
   const Errors& fine = e.back();
   BOOST_TEST(fine.centre_xx < 1e-3);  // issue 5: within 0.1% of the closed form
   BOOST_TEST(fine.centre_yy < 1e-3);
-  BOOST_TEST(fine.loaded < 5e-3);     // relative L2 along the diameters below 0.5%
+  BOOST_TEST(fine.loaded < 5e-3);  // relative L2 along the diameters below 0.5%
   BOOST_TEST(fine.horizontal < 5e-3);
   for (std::size_t i = e.size() - 2; i < e.size(); ++i) {
     BOOST_TEST(order(e[i - 1].loaded, e[i].loaded) > 2.0 - order_margin);

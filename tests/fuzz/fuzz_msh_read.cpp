@@ -31,7 +31,8 @@ void check_accepted_mesh(const Mesh& mesh) {
   require(!mesh.body_names.empty(), "no body");
   require(mesh.cell_offsets.size() == mesh.cell_count() + 1 && mesh.cell_offsets.back() == mesh.cell_nodes.size(),
           "cell lists of different lengths");
-  for (const Point& p : mesh.nodes) require(std::isfinite(p.x) && std::isfinite(p.y), "a coordinate that is not finite");
+  for (const Point& p : mesh.nodes)
+    require(std::isfinite(p.x) && std::isfinite(p.y), "a coordinate that is not finite");
   for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
     const std::size_t n = mesh.cell_size(c);
     require(n == 3 || n == 4, "a cell of neither 3 nor 4 nodes");

@@ -69,8 +69,9 @@ void check_geometry(const meshes::Geometry& geometry) {
 /// moduli, references in range, names that are safe as folder names and CSV fields.
 void check_accepted_scene(const scene::Scene& s) {
   const scene::Analysis& a = s.analysis;
-  require_finite({a.dt_max, a.max_displacement_ratio, a.penalty, a.end_time, a.output_interval, a.gravity[0],
-                  a.gravity[1]}, "an analysis value that is not finite");
+  require_finite(
+      {a.dt_max, a.max_displacement_ratio, a.penalty, a.end_time, a.output_interval, a.gravity[0], a.gravity[1]},
+      "an analysis value that is not finite");
   require(a.dt_max > 0 && a.end_time > 0 && a.output_interval > 0 && a.penalty > 0, "a time or penalty <= 0");
   require(!s.materials.empty() && !s.bodies.empty() && !s.joint_sets.empty(), "no materials, bodies or joint sets");
   for (const scene::Material& m : s.materials) {

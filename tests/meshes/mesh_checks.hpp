@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "ddafrac/meshes/mesh.hpp"
 #include "ddafrac/common/angles.hpp"
+#include "ddafrac/meshes/mesh.hpp"
 
 namespace ddafrac::meshes::testing {
 
@@ -46,9 +46,9 @@ inline double body_area(const Mesh& mesh, const std::string& body) {
 
 inline std::size_t body_cells(const Mesh& mesh, const std::string& body) {
   const long b = index_of(mesh.body_names, body);
-  return static_cast<std::size_t>(
-      std::count_if(mesh.cell_body.begin(), mesh.cell_body.end(),
-                    [b](Index body_of_cell) { return static_cast<long>(body_of_cell) == b; }));
+  return static_cast<std::size_t>(std::count_if(mesh.cell_body.begin(), mesh.cell_body.end(), [b](Index body_of_cell) {
+    return static_cast<long>(body_of_cell) == b;
+  }));
 }
 
 /// Smallest cell area divided by the square of its longest edge, over all cells: > 0 means
@@ -78,8 +78,9 @@ inline std::size_t misoriented_boundary_edges(const Mesh& mesh) {
     }
   }
   return static_cast<std::size_t>(
-      std::count_if(mesh.boundary_edges.begin(), mesh.boundary_edges.end(),
-                    [&](const BoundaryEdge& e) { return directed.count({e.a, e.b}) == 0; }));
+      std::count_if(mesh.boundary_edges.begin(), mesh.boundary_edges.end(), [&](const BoundaryEdge& e) {
+        return directed.count({e.a, e.b}) == 0;
+      }));
 }
 
 inline std::vector<Point> group_nodes(const Mesh& mesh, const std::string& group) {
@@ -138,8 +139,8 @@ inline bool same_mesh(const Mesh& a, const Mesh& b, double tol) {
     std::sort(list.begin(), list.end());
     return list;
   };
-  return a.cell_offsets == b.cell_offsets && a.cell_nodes == b.cell_nodes &&
-         a.cell_body == b.cell_body && a.body_names == b.body_names && edges(a) == edges(b);
+  return a.cell_offsets == b.cell_offsets && a.cell_nodes == b.cell_nodes && a.cell_body == b.cell_body &&
+         a.body_names == b.body_names && edges(a) == edges(b);
 }
 
 }  // namespace ddafrac::meshes::testing

@@ -15,8 +15,8 @@ using namespace ddafrac::meshes::testing;
 
 namespace {
 
-constexpr double kRadius = 0.05;          // m
-constexpr double kAreaTolerance = 2e-3;   // relative; coarse rim at h = 4 mm loses ~ (h/R)^2/6
+constexpr double kRadius = 0.05;         // m
+constexpr double kAreaTolerance = 2e-3;  // relative; coarse rim at h = 4 mm loses ~ (h/R)^2/6
 // A uniform mesh of size h has about area / (sqrt(3)/4 h^2) triangles; gmsh's own sizing
 // deviates from this ideal by tens of percent, not by factors.
 constexpr double kCountSpread = 0.5;
@@ -55,8 +55,8 @@ BOOST_AUTO_TEST_CASE(quadrilaterals_are_all_quads_and_counter_clockwise) {
       BOOST_TEST(cells_of_size(mesh, 4) == mesh.cell_count());
       BOOST_TEST(smallest_relative_area(mesh) > 0.0);
       BOOST_TEST(misoriented_boundary_edges(mesh) == 0u);
-      BOOST_TEST_MESSAGE("h " << h << ": " << mesh.cell_count() << " quads, min angle "
-                         << report.min_angle_deg << " deg");
+      BOOST_TEST_MESSAGE("h " << h << ": " << mesh.cell_count() << " quads, min angle " << report.min_angle_deg
+                              << " deg");
     }
   }
 }
@@ -65,8 +65,7 @@ BOOST_AUTO_TEST_CASE(fem_disc_area_matches_the_dda_geometry) {
   ImpactDisc impact;
   const Mesh mesh = generate_fem_mesh(impact, 0.004, FemCells::Triangles);
   BOOST_TEST(mesh.body_names == std::vector<std::string>{"disc"}, boost::test_tools::per_element());
-  const double analytic =
-      kPi * kRadius * kRadius - impact.connectivity * impact.diameter * impact.joint_width;
+  const double analytic = kPi * kRadius * kRadius - impact.connectivity * impact.diameter * impact.joint_width;
   BOOST_TEST(std::abs(body_area(mesh, "disc") - analytic) <= kAreaTolerance * analytic);
   BOOST_CHECK_THROW(generate_fem_mesh(impact, 0.0, FemCells::Triangles), MeshError);
 }

@@ -16,11 +16,11 @@ using namespace ddafrac::meshes::testing;
 
 namespace {
 
-constexpr int kBlocks = 3000;                // coarse enough to be quick, fine enough for 0.1%
-constexpr double kAreaTolerance = 1e-3;      // relative; the polygonal rim loses ~ (h/R)^2/6
-constexpr double kDiameter = 0.1;            // m
+constexpr int kBlocks = 3000;            // coarse enough to be quick, fine enough for 0.1%
+constexpr double kAreaTolerance = 1e-3;  // relative; the polygonal rim loses ~ (h/R)^2/6
+constexpr double kDiameter = 0.1;        // m
 constexpr double kRadius = kDiameter / 2;
-constexpr double kExact = 1e-12;             // m, for points the geometry puts on exact places
+constexpr double kExact = 1e-12;  // m, for points the geometry puts on exact places
 
 Mesh dda(const Geometry& geometry, QualityReport* report = nullptr) {
   MeshControl control;
@@ -55,14 +55,13 @@ SlotMeasure principal_slot(const Mesh& mesh, const std::string& group) {
   return {hi - lo, angle};
 }
 
-void check_slot(const Geometry& geometry, const std::string& group, double length,
-                double inclination) {
+void check_slot(const Geometry& geometry, const std::string& group, double length, double inclination) {
   QualityReport report;
   const Mesh mesh = dda(geometry, &report);
   const SlotMeasure slot = principal_slot(mesh, group);
   const double h = report.element_size;
-  BOOST_TEST_MESSAGE(group << ": length " << slot.length << " m (spec " << length << "), angle "
-                     << slot.angle / kDegree << " deg (spec " << inclination / kDegree << ")");
+  BOOST_TEST_MESSAGE(group << ": length " << slot.length << " m (spec " << length << "), angle " << slot.angle / kDegree
+                           << " deg (spec " << inclination / kDegree << ")");
   BOOST_TEST(std::abs(slot.length - length) <= h);
   // An end of the slot displaced by one element size turns it by at most h / (L/2).
   const double angle_error = std::abs(std::remainder(slot.angle - inclination, kPi));
@@ -77,8 +76,7 @@ bool has_node_at(const Mesh& mesh, double x, double y) {
 }
 
 /// The one cell of a rigid body: four nodes, spanning [x0, x1] x [y0, y1].
-void check_rectangle(const Mesh& mesh, const std::string& body, double x0, double y0, double x1,
-                     double y1) {
+void check_rectangle(const Mesh& mesh, const std::string& body, double x0, double y0, double x1, double y1) {
   BOOST_TEST_CONTEXT(body) {
     BOOST_REQUIRE_EQUAL(body_cells(mesh, body), 1u);
     const long b = index_of(mesh.body_names, body);
@@ -109,8 +107,7 @@ BOOST_AUTO_TEST_CASE(meshed_area_equals_analytic_area) {
   check_area(slit, kPi * kRadius * kRadius - slit.slit.length * slit.slit.width);
   ImpactDisc impact;
   impact.connectivity = 0.75;
-  check_area(impact,
-             kPi * kRadius * kRadius - impact.connectivity * kDiameter * impact.joint_width);
+  check_area(impact, kPi * kRadius * kRadius - impact.connectivity * kDiameter * impact.joint_width);
 }
 
 BOOST_AUTO_TEST_CASE(slit_and_joint_length_and_angle_match_the_spec) {
@@ -157,8 +154,7 @@ BOOST_AUTO_TEST_CASE(physical_group_names) {
   FlattenedDisc precracked;
   precracked.slit = Slit{};
   const Mesh flattened = dda(precracked);
-  BOOST_TEST(flattened.body_names == (Names{"disc", "top_platen", "bottom_platen"}),
-             boost::test_tools::per_element());
+  BOOST_TEST(flattened.body_names == (Names{"disc", "top_platen", "bottom_platen"}), boost::test_tools::per_element());
   BOOST_TEST(sorted(flattened.boundary_names) == (Names{"flat_bottom", "flat_top", "rim", "slit"}),
              boost::test_tools::per_element());
 
@@ -182,16 +178,15 @@ BOOST_AUTO_TEST_CASE(loaded_arcs_and_impact_patch_have_the_requested_half_angle)
 
   ImpactDisc impact;
   const Mesh mesh = dda(impact);
-  BOOST_TEST(std::abs(half_angle_about(mesh, "impact_patch", -kPi / 2) - impact.patch_half_angle) <=
-             kAngleTolerance);
+  BOOST_TEST(std::abs(half_angle_about(mesh, "impact_patch", -kPi / 2) - impact.patch_half_angle) <= kAngleTolerance);
 }
 
 BOOST_AUTO_TEST_CASE(impact_plate_touches_the_lowest_disc_point_which_is_a_node) {
   ImpactDisc impact;
   const Mesh mesh = dda(impact);
   BOOST_TEST(has_node_at(mesh, 0.0, -kRadius));
-  check_rectangle(mesh, "plate", -impact.plate_width / 2, -kRadius - impact.plate_height,
-                  impact.plate_width / 2, -kRadius);
+  check_rectangle(mesh, "plate", -impact.plate_width / 2, -kRadius - impact.plate_height, impact.plate_width / 2,
+                  -kRadius);
 }
 
 BOOST_AUTO_TEST_CASE(platens_touch_the_flats) {
@@ -200,16 +195,15 @@ BOOST_AUTO_TEST_CASE(platens_touch_the_flats) {
   const double flat_y = kRadius * std::cos(disc.flat_angle / 2);
   check_rectangle(mesh, "top_platen", -disc.platen_width / 2, flat_y, disc.platen_width / 2,
                   flat_y + disc.platen_thickness);
-  check_rectangle(mesh, "bottom_platen", -disc.platen_width / 2, -flat_y - disc.platen_thickness,
-                  disc.platen_width / 2, -flat_y);
+  check_rectangle(mesh, "bottom_platen", -disc.platen_width / 2, -flat_y - disc.platen_thickness, disc.platen_width / 2,
+                  -flat_y);
   for (const Point& p : group_nodes(mesh, "flat_top")) BOOST_TEST(std::abs(p.y - flat_y) <= kExact);
   for (const Point& p : group_nodes(mesh, "flat_bottom")) {
     BOOST_TEST(std::abs(p.y + flat_y) <= kExact);
   }
 
   disc.with_platens = false;
-  BOOST_TEST(dda(disc).body_names == std::vector<std::string>{"disc"},
-             boost::test_tools::per_element());
+  BOOST_TEST(dda(disc).body_names == std::vector<std::string>{"disc"}, boost::test_tools::per_element());
 }
 
 BOOST_AUTO_TEST_CASE(same_input_gives_an_identical_mesh) {

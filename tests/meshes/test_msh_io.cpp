@@ -77,8 +77,7 @@ BOOST_AUTO_TEST_CASE(round_trip_of_generated_meshes) {
   FlattenedDisc precracked;
   precracked.slit = Slit{};
   const Mesh quads = generate_fem_mesh(SlitDisc{}, 0.004, FemCells::Quadrilaterals);
-  for (const Mesh& mesh : {generate_dda_mesh(ImpactDisc{}, control),
-                           generate_dda_mesh(precracked, control), quads}) {
+  for (const Mesh& mesh : {generate_dda_mesh(ImpactDisc{}, control), generate_dda_mesh(precracked, control), quads}) {
     const fs::path path = dir.path / "mesh.msh";
     write_msh(mesh, path);
     BOOST_TEST(read_text(path).rfind("$MeshFormat\n4.1 0 8\n", 0) == 0u);  // ASCII 4.1
@@ -104,10 +103,8 @@ BOOST_AUTO_TEST_CASE(missing_file) { check_error("/nonexistent/ddafrac/none.msh"
 
 BOOST_AUTO_TEST_CASE(three_dimensional_elements) {
   TempDir dir;
-  const std::string nodes_3d =
-      "$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0 0 1\n$EndNodes\n";
-  check_error(dir.file("tet.msh", kFormat + kNames + nodes_3d +
-                                      elements(kTriangles + "3 4 2 2 2 1 2 3 5\n")),
+  const std::string nodes_3d = "$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0 0 1\n$EndNodes\n";
+  check_error(dir.file("tet.msh", kFormat + kNames + nodes_3d + elements(kTriangles + "3 4 2 2 2 1 2 3 5\n")),
               "3D elements");
 }
 
@@ -123,8 +120,7 @@ BOOST_AUTO_TEST_CASE(second_order_elements) {
 BOOST_AUTO_TEST_CASE(no_physical_surface_groups) {
   TempDir dir;
   const std::string no_groups = "1 2 2 0 1 1 2 3\n2 2 2 0 1 1 3 4\n";
-  check_error(dir.file("nogroups.msh", kFormat + nodes() + elements(no_groups)),
-              "no physical surface groups");
+  check_error(dir.file("nogroups.msh", kFormat + nodes() + elements(no_groups)), "no physical surface groups");
 }
 
 BOOST_AUTO_TEST_CASE(unnamed_physical_group) {
@@ -134,8 +130,7 @@ BOOST_AUTO_TEST_CASE(unnamed_physical_group) {
 
 BOOST_AUTO_TEST_CASE(nodes_off_the_plane) {
   TempDir dir;
-  check_error(dir.file("offplane.msh", kFormat + kNames + nodes(0.01) + elements(kTriangles)),
-              "off the plane z = 0");
+  check_error(dir.file("offplane.msh", kFormat + kNames + nodes(0.01) + elements(kTriangles)), "off the plane z = 0");
 }
 
 BOOST_AUTO_TEST_CASE(not_a_mesh_file) {
@@ -166,7 +161,8 @@ BOOST_AUTO_TEST_CASE(malformed_sections_are_refused_with_their_line) {
               "twice.msh:16: a second $Nodes section");
   check_error(dir.file("order.msh", kFormat + kNames + elements(kTriangles) + nodes()),
               "order.msh:9: $Elements comes before $Nodes");
-  check_error(dir.file("unclosed.msh", kFormat + "$Comments\nno end\n"), "no $EndComments closes the $Comments section");
+  check_error(dir.file("unclosed.msh", kFormat + "$Comments\nno end\n"),
+              "no $EndComments closes the $Comments section");
   check_error(dir.file("noelements.msh", kFormat + kNames + nodes()), "has no $Elements section");
   check_error(dir.file("repeated.msh", kFormat + kNames + nodes() + elements("1 3 2 2 1 1 2 3 3\n")),
               "repeated.msh:18: element 1 uses node 3 twice; expected 4 distinct nodes");
@@ -178,10 +174,11 @@ BOOST_AUTO_TEST_CASE(malformed_sections_are_refused_with_their_line) {
 // have taken as cells of four nodes) is refused.
 BOOST_AUTO_TEST_CASE(msh41_blocks_of_the_wrong_dimension_or_entity) {
   TempDir dir;
-  const std::string head = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
-                           "$PhysicalNames\n1\n2 1 \"disc\"\n$EndPhysicalNames\n"
-                           "$Entities\n0 0 1 0\n1 0 0 0 1 1 0 1 1 0\n$EndEntities\n"
-                           "$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n";
+  const std::string head =
+      "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+      "$PhysicalNames\n1\n2 1 \"disc\"\n$EndPhysicalNames\n"
+      "$Entities\n0 0 1 0\n1 0 0 0 1 1 0 1 1 0\n$EndEntities\n"
+      "$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n";
   const Mesh mesh = read_msh(dir.file("good.msh", head + "$Elements\n1 1 1 1\n2 1 2 1\n1 1 2 3\n$EndElements\n"));
   BOOST_TEST(mesh.cell_count() == 1u);
   check_error(dir.file("lines.msh", head + "$Elements\n1 1 1 1\n2 1 1 1\n1 1 2\n$EndElements\n"),

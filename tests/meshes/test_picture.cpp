@@ -13,9 +13,9 @@
 
 #include <unistd.h>
 
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "ddafrac/meshes/picture.hpp"
-#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac::meshes;
 namespace fs = std::filesystem;
@@ -31,8 +31,7 @@ Surface read_png(const fs::path& path) {
 }
 
 Rgb pixel(cairo_surface_t* surface, int x, int y) {
-  const unsigned char* row =
-      cairo_image_surface_get_data(surface) + y * cairo_image_surface_get_stride(surface);
+  const unsigned char* row = cairo_image_surface_get_data(surface) + y * cairo_image_surface_get_stride(surface);
   std::uint32_t argb = 0;
   std::memcpy(&argb, row + 4 * x, sizeof argb);  // native-endian 0xAARRGGBB
   return {static_cast<unsigned char>(argb >> 16), static_cast<unsigned char>(argb >> 8),
@@ -91,7 +90,7 @@ BOOST_AUTO_TEST_CASE(flattened_disc_with_platens_keeps_its_aspect_ratio) {
   const double margin = 2 * std::round(0.03 * width);
   const double expected = (width - margin) * model_height / 0.1 + margin;
   BOOST_TEST(std::abs(height - expected) <= 1.0);
-  const double scale = (width - margin) / 0.1;  // px per m
+  const double scale = (width - margin) / 0.1;                             // px per m
   const int mid_platen_row = static_cast<int>(margin / 2 + 0.01 * scale);  // 10 mm below its top
   const Rgb top_platen = pixel(surface.get(), width / 2, mid_platen_row);
   BOOST_TEST(top_platen.r == body_colour(1).r);

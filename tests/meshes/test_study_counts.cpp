@@ -15,7 +15,7 @@ using testing::kDegree;
 
 namespace {
 
-constexpr double kStudyTolerance = 0.02;  // the generator's default; the study asks for +-5%
+constexpr double kStudyTolerance = 0.02;         // the generator's default; the study asks for +-5%
 constexpr double kMinAcceptableAngleDeg = 25.0;  // Frontal-Delaunay gives > 30 deg here
 
 void check_count(const std::string& label, const Geometry& geometry, int target) {
@@ -25,12 +25,11 @@ void check_count(const std::string& label, const Geometry& geometry, int target)
   QualityReport report;
   const auto start = std::chrono::steady_clock::now();
   const Mesh mesh = generate_dda_mesh(geometry, control, &report);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   BOOST_TEST_MESSAGE(label << ", target " << target << ": " << report.blocks << " blocks, min angle "
-                     << report.min_angle_deg << " deg, mean min angle " << report.mean_min_angle_deg
-                     << " deg, h " << report.element_size * 1e3 << " mm, " << report.iterations
-                     << " iterations, " << seconds << " s");
+                           << report.min_angle_deg << " deg, mean min angle " << report.mean_min_angle_deg << " deg, h "
+                           << report.element_size * 1e3 << " mm, " << report.iterations << " iterations, " << seconds
+                           << " s");
   BOOST_TEST(std::abs(static_cast<double>(report.blocks) - target) <= kStudyTolerance * target);
   BOOST_TEST(report.blocks == testing::body_cells(mesh, "disc"));
   BOOST_TEST(report.min_angle_deg > kMinAcceptableAngleDeg);

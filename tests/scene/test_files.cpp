@@ -6,9 +6,9 @@
 #include <cmath>
 #include <filesystem>
 
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/scene/parse.hpp"
 #include "ddafrac/scene/sweep.hpp"
-#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac;
 namespace fs = std::filesystem;
@@ -24,9 +24,7 @@ BOOST_AUTO_TEST_CASE(every_scene_file_parses) {
     const std::string name = entry.path().filename().string();
     const bool sweep = name.size() > 11 && name.compare(name.size() - 11, 11, ".sweep.toml") == 0;
     if (entry.path().extension() != ".toml" || name.rfind("common_", 0) == 0 || sweep) continue;
-    BOOST_TEST_CONTEXT(entry.path().string()) {
-      BOOST_CHECK_NO_THROW(scene::load_scene(entry.path()));
-    }
+    BOOST_TEST_CONTEXT(entry.path().string()) { BOOST_CHECK_NO_THROW(scene::load_scene(entry.path())); }
     ++parsed;
   }
   // 15 impact cases + base, 3 flattened + 4 pre-cracked + 2 bases, 4 small, default.

@@ -9,9 +9,9 @@
 #include <regex>
 #include <string>
 
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/scene/parse.hpp"
 #include "ddafrac/scene/sweep.hpp"
-#include "ddafrac/common/angles.hpp"
 
 using namespace ddafrac;
 
@@ -159,8 +159,7 @@ BOOST_AUTO_TEST_CASE(missing_required_table) {
 }
 
 BOOST_AUTO_TEST_CASE(poisson_ratio_of_one_half_is_refused) {
-  expect_problem(replaced(kValid, "poisson = 0.12", "poisson = 0.5"), "materials.rock.poisson", 14,
-                 "in [0, 0.5)");
+  expect_problem(replaced(kValid, "poisson = 0.12", "poisson = 0.5"), "materials.rock.poisson", 14, "in [0, 0.5)");
 }
 
 BOOST_AUTO_TEST_CASE(negative_density_is_refused) {
@@ -173,9 +172,10 @@ BOOST_AUTO_TEST_CASE(zero_time_step_is_refused) {
 }
 
 BOOST_AUTO_TEST_CASE(contact_search_factors_are_read_when_given) {
-  const scene::Scene s = scene::parse_scene(
-      replaced(kValid, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nsearch_distance_factor = 0.25\npair_list_skin_factor = 0"),
-      "ok.toml");
+  const scene::Scene s =
+      scene::parse_scene(replaced(kValid, "gravity = [0.0, -9.81]",
+                                  "gravity = [0.0, -9.81]\nsearch_distance_factor = 0.25\npair_list_skin_factor = 0"),
+                         "ok.toml");
   BOOST_TEST(s.analysis.search_distance_factor == 0.25);
   BOOST_TEST(s.analysis.pair_list_skin_factor == 0.0);
 }
@@ -221,8 +221,8 @@ BOOST_AUTO_TEST_CASE(body_the_geometry_does_not_make) {
 }
 
 BOOST_AUTO_TEST_CASE(prescribed_motion_needs_a_velocity) {
-  expect_problem(replaced(kValid, "motion = \"fixed\"", "motion = \"prescribed\""),
-                 "bodies.plate.prescribed_velocity", 0, "missing required value");
+  expect_problem(replaced(kValid, "motion = \"fixed\"", "motion = \"prescribed\""), "bodies.plate.prescribed_velocity",
+                 0, "missing required value");
 }
 
 BOOST_AUTO_TEST_CASE(prescribed_velocity_without_prescribed_motion) {
@@ -277,7 +277,8 @@ BOOST_AUTO_TEST_CASE(toml_syntax_error_gives_line) {
 }
 
 BOOST_AUTO_TEST_CASE(geometry_file_and_generator_together) {
-  const auto problems = problems_of(replaced(kValid, "generator = \"impact_disc\"", "generator = \"impact_disc\"\nfile = \"x.msh\""));
+  const auto problems =
+      problems_of(replaced(kValid, "generator = \"impact_disc\"", "generator = \"impact_disc\"\nfile = \"x.msh\""));
   BOOST_TEST_REQUIRE(!problems.empty());
   BOOST_TEST(problems[0].key == "geometry.file");
   BOOST_TEST(problems[0].message.find("not both") != std::string::npos);
@@ -297,7 +298,8 @@ BOOST_AUTO_TEST_CASE(error_text_has_file_line_column_key) {
     BOOST_FAIL("accepted");
   } catch (const scene::SceneError& e) {
     const std::string text = e.what();
-    BOOST_TEST(text.find("dir/scene.toml:5:10: analysis.dt_max: expected a number > 0 (s), got 0") != std::string::npos);
+    BOOST_TEST(text.find("dir/scene.toml:5:10: analysis.dt_max: expected a number > 0 (s), got 0") !=
+               std::string::npos);
   }
 }
 
@@ -354,8 +356,8 @@ BOOST_AUTO_TEST_CASE(missing_file_is_named) {
 
 BOOST_AUTO_TEST_CASE(overrides_replace_values_before_validation) {
   const auto path = write_temp("plain.toml", kValid);
-  const scene::Scene s = scene::load_scene(path, {"analysis.dt_max=1e-8", "analysis.mode=static",
-                                                  "bodies.disc.velocity=[0.0, 0.0]", "mesh.blocks=500"});
+  const scene::Scene s = scene::load_scene(
+      path, {"analysis.dt_max=1e-8", "analysis.mode=static", "bodies.disc.velocity=[0.0, 0.0]", "mesh.blocks=500"});
   BOOST_TEST(s.analysis.dt_max == 1e-8);
   BOOST_TEST((s.analysis.mode == scene::Mode::Static));
   BOOST_TEST(s.mesh.target_blocks == 500);
@@ -422,7 +424,8 @@ BOOST_AUTO_TEST_CASE(negative_verification_tolerance_is_refused) {
 namespace {
 
 /// Loads the scene at `path` with `overrides` and returns the problems it was refused for.
-std::vector<scene::Problem> load_problems(const std::filesystem::path& path, const std::vector<std::string>& overrides = {}) {
+std::vector<scene::Problem> load_problems(const std::filesystem::path& path,
+                                          const std::vector<std::string>& overrides = {}) {
   try {
     scene::load_scene(path, overrides);
   } catch (const scene::SceneError& e) {
@@ -435,7 +438,8 @@ std::vector<scene::Problem> load_problems(const std::filesystem::path& path, con
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(a_scene_name_cannot_climb_out_of_the_output_folder) {
-  expect_problem(replaced(kValid, "name = \"t\"", "name = \"../../x\""), "name", 1, "the character \"/\" is not allowed");
+  expect_problem(replaced(kValid, "name = \"t\"", "name = \"../../x\""), "name", 1,
+                 "the character \"/\" is not allowed");
 }
 
 BOOST_AUTO_TEST_CASE(a_gauge_name_cannot_break_the_columns_of_gauges_csv) {

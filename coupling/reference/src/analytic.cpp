@@ -50,8 +50,7 @@ void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weig
 /// Polar (r, theta measured from the +y loading axis) components to Cartesian.
 Stress2 from_loading_polar(double s_r, double s_t, double t_rt, double theta) {
   const double s = std::sin(theta), c = std::cos(theta);
-  return {s_r * s * s + s_t * c * c + 2.0 * t_rt * s * c,
-          s_r * c * c + s_t * s * s - 2.0 * t_rt * s * c,
+  return {s_r * s * s + s_t * c * c + 2.0 * t_rt * s * c, s_r * c * c + s_t * s * s - 2.0 * t_rt * s * c,
           (s_r - s_t) * s * c + t_rt * (c * c - s * s)};
 }
 
@@ -103,9 +102,7 @@ Stress2 hondros_horizontal_diameter(const Disc& disc, const HondrosLoad& load, d
   return {k * (ratio - angle), -k * (ratio + angle), 0.0};
 }
 
-Stress2 hondros_centre(const Disc& disc, const HondrosLoad& load) {
-  return hondros_loaded_diameter(disc, load, 0.0);
-}
+Stress2 hondros_centre(const Disc& disc, const HondrosLoad& load) { return hondros_loaded_diameter(disc, load, 0.0); }
 
 Stress2 hondros_series(const Disc& disc, const HondrosLoad& load, double x, double y) {
   check_half_angle(load);
@@ -128,8 +125,7 @@ Stress2 hondros_series(const Disc& disc, const HondrosLoad& load, double x, doub
   return from_loading_polar(-k * (a + sum_r), -k * (a - sum_t), k * sum_rt, theta);
 }
 
-Stress2 hondros_superposition(const Disc& disc, const HondrosLoad& load, double x, double y,
-                              int points_per_arc) {
+Stress2 hondros_superposition(const Disc& disc, const HondrosLoad& load, double x, double y, int points_per_arc) {
   check_half_angle(load);
   std::vector<double> nodes, weights;
   gauss_legendre(points_per_arc, nodes, weights);
@@ -138,8 +134,7 @@ Stress2 hondros_superposition(const Disc& disc, const HondrosLoad& load, double 
   for (const double centre : {0.5 * pi, 1.5 * pi}) {
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       const double force = line_force * load.half_angle * weights[i];
-      const Stress2 s =
-          radial_rim_force_stress(disc, force, centre + load.half_angle * nodes[i], x, y);
+      const Stress2 s = radial_rim_force_stress(disc, force, centre + load.half_angle * nodes[i], x, y);
       sum.xx += s.xx;
       sum.yy += s.yy;
       sum.xy += s.xy;
@@ -161,9 +156,7 @@ double p_wave_speed(const Elastic& m, PlaneModel plane) {
   return std::sqrt(m.young * (1.0 - nu) / (m.density * (1.0 + nu) * (1.0 - 2.0 * nu)));
 }
 
-double s_wave_speed(const Elastic& m) {
-  return std::sqrt(m.young / (2.0 * m.density * (1.0 + m.poisson)));
-}
+double s_wave_speed(const Elastic& m) { return std::sqrt(m.young / (2.0 * m.density * (1.0 + m.poisson))); }
 
 double impact_plane_wave_stress(const Elastic& m, PlaneModel plane, double v0) {
   return -m.density * p_wave_speed(m, plane) * v0;

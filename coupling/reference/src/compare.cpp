@@ -72,7 +72,8 @@ HistoryComparison compare_histories(const History& approximation, const History&
     ++count;
   }
   const double peak = std::abs(out.reference_peak.value);
-  if (count == 0 || !(peak > 0.0)) throw std::invalid_argument("compare_histories: no common times, or a zero reference");
+  if (count == 0 || !(peak > 0.0))
+    throw std::invalid_argument("compare_histories: no common times, or a zero reference");
   out.rms_over_peak = std::sqrt(sum / static_cast<double>(count)) / peak;
   return out;
 }

@@ -46,7 +46,8 @@ bool all_vertices_finite(const dda::BlockSystem& b) {
 }
 
 bool contains_all(const std::string& text, const std::vector<std::string>& parts) {
-  return std::all_of(parts.begin(), parts.end(), [&](const std::string& p) { return text.find(p) != std::string::npos; });
+  return std::all_of(parts.begin(), parts.end(),
+                     [&](const std::string& p) { return text.find(p) != std::string::npos; });
 }
 
 std::string csv_field(const std::string& s) {
@@ -122,8 +123,9 @@ double max_aspect_ratio(const meshes::Mesh& mesh, const std::string& body) {
     if (mesh.cell_body[c] != b || mesh.cell_size(c) != 3) continue;
     const meshes::Index* n = mesh.cell_begin(c);
     const meshes::Point &p = mesh.nodes[n[0]], &q = mesh.nodes[n[1]], &r = mesh.nodes[n[2]];
-    const double l2 = std::max({std::pow(q.x - p.x, 2) + std::pow(q.y - p.y, 2), std::pow(r.x - q.x, 2) + std::pow(r.y - q.y, 2),
-                                std::pow(p.x - r.x, 2) + std::pow(p.y - r.y, 2)});
+    const double l2 =
+        std::max({std::pow(q.x - p.x, 2) + std::pow(q.y - p.y, 2), std::pow(r.x - q.x, 2) + std::pow(r.y - q.y, 2),
+                  std::pow(p.x - r.x, 2) + std::pow(p.y - r.y, 2)});
     worst = std::max(worst, l2 / (2.0 * std::abs(triangle_area(p, q, r))));
   }
   return worst;
@@ -143,29 +145,99 @@ std::vector<StabilityCase> stability_cases() {
     if (c.max_steps == 0) c.max_steps = 40000;
     cases.push_back(std::move(c));
   };
-  add({"kn-1e2E-dynamic", "kn/E = 1e2 (kn = 1.05e12 N/m), impact 3.5 m/s", impact,
-       {impact_blocks, fmt::format("analysis.penalty={:.6g}", 1e2 * young)}, std::nullopt, 50e-6, 0, 120.0,
-       Expectation::Stable, {}});
+  add({"kn-1e2E-dynamic",
+       "kn/E = 1e2 (kn = 1.05e12 N/m), impact 3.5 m/s",
+       impact,
+       {impact_blocks, fmt::format("analysis.penalty={:.6g}", 1e2 * young)},
+       std::nullopt,
+       50e-6,
+       0,
+       120.0,
+       Expectation::Stable,
+       {}});
   // Block-Jacobi PCG needs hundreds of iterations per solve at kn/E >= 1e3: the stiff dynamic
   // cases use the sparse direct solver (same system, same answer to round-off).
   const std::string direct = "analysis.solver=\"direct\"";
-  add({"kn-1e3E-dynamic", "kn/E = 1e3 (kn = 1.05e13 N/m), impact 3.5 m/s", impact,
-       {impact_blocks, direct, fmt::format("analysis.penalty={:.6g}", 1e3 * young)}, std::nullopt, 100e-6, 0, 900.0,
-       Expectation::Stable, {}});
-  add({"kn-1e4E-dynamic", "kn/E = 1e4 (kn = 1.05e14 N/m), impact 3.5 m/s", impact, {impact_blocks, direct, kn_1e4},
-       std::nullopt, 50e-6, 0, 900.0, Expectation::Stable, {}});
-  add({"kn-1e4E-static", "kn/E = 1e4, static mode, platen 0.25 m/s", flattened,
-       {blocks, kn_1e4, "analysis.mode=\"static\""}, std::nullopt, 200e-6, 0, 120.0, Expectation::Stable, {}});
-  add({"dt-1e-5-static", "dt_max = 1e-5 s, static mode, platen 0.25 m/s to 0.5 mm (past the peak)", flattened,
-       {blocks, "analysis.dt_max=1e-5", "analysis.mode=\"static\""}, std::nullopt, 2e-3, 0, 120.0, Expectation::Stable, {}});
-  add({"dt-1e-5-dynamic", "dt_max = 1e-5 s, impact 3.5 m/s", impact, {impact_blocks, "analysis.dt_max=1e-5"}, std::nullopt,
-       300e-6, 0, 120.0, Expectation::Stable, {}});
-  add({"dt-1e-9-dynamic", "dt_max = 1e-9 s, impact 3.5 m/s", impact, {impact_blocks, "analysis.dt_max=1e-9"}, std::nullopt,
-       2e-6, 0, 120.0, Expectation::Stable, {}});
-  add({"v0-50", "impact at v0 = 50 m/s", impact, {impact_blocks, "bodies.disc.velocity=[0.0, -50.0]"}, std::nullopt, 100e-6, 0,
-       120.0, Expectation::Stable, {}});
-  add({"sliver", "slab of sliver triangles (16.7 mm x 0.67 mm cells), impact 3.5 m/s", impact, {}, SliverSlab{}, 100e-6,
-       0, 120.0, Expectation::Stable, {}});
+  add({"kn-1e3E-dynamic",
+       "kn/E = 1e3 (kn = 1.05e13 N/m), impact 3.5 m/s",
+       impact,
+       {impact_blocks, direct, fmt::format("analysis.penalty={:.6g}", 1e3 * young)},
+       std::nullopt,
+       100e-6,
+       0,
+       900.0,
+       Expectation::Stable,
+       {}});
+  add({"kn-1e4E-dynamic",
+       "kn/E = 1e4 (kn = 1.05e14 N/m), impact 3.5 m/s",
+       impact,
+       {impact_blocks, direct, kn_1e4},
+       std::nullopt,
+       50e-6,
+       0,
+       900.0,
+       Expectation::Stable,
+       {}});
+  add({"kn-1e4E-static",
+       "kn/E = 1e4, static mode, platen 0.25 m/s",
+       flattened,
+       {blocks, kn_1e4, "analysis.mode=\"static\""},
+       std::nullopt,
+       200e-6,
+       0,
+       120.0,
+       Expectation::Stable,
+       {}});
+  add({"dt-1e-5-static",
+       "dt_max = 1e-5 s, static mode, platen 0.25 m/s to 0.5 mm (past the peak)",
+       flattened,
+       {blocks, "analysis.dt_max=1e-5", "analysis.mode=\"static\""},
+       std::nullopt,
+       2e-3,
+       0,
+       120.0,
+       Expectation::Stable,
+       {}});
+  add({"dt-1e-5-dynamic",
+       "dt_max = 1e-5 s, impact 3.5 m/s",
+       impact,
+       {impact_blocks, "analysis.dt_max=1e-5"},
+       std::nullopt,
+       300e-6,
+       0,
+       120.0,
+       Expectation::Stable,
+       {}});
+  add({"dt-1e-9-dynamic",
+       "dt_max = 1e-9 s, impact 3.5 m/s",
+       impact,
+       {impact_blocks, "analysis.dt_max=1e-9"},
+       std::nullopt,
+       2e-6,
+       0,
+       120.0,
+       Expectation::Stable,
+       {}});
+  add({"v0-50",
+       "impact at v0 = 50 m/s",
+       impact,
+       {impact_blocks, "bodies.disc.velocity=[0.0, -50.0]"},
+       std::nullopt,
+       100e-6,
+       0,
+       120.0,
+       Expectation::Stable,
+       {}});
+  add({"sliver",
+       "slab of sliver triangles (16.7 mm x 0.67 mm cells), impact 3.5 m/s",
+       impact,
+       {},
+       SliverSlab{},
+       100e-6,
+       0,
+       120.0,
+       Expectation::Stable,
+       {}});
   const std::vector<std::string> stiff_platens{blocks,
                                                "materials.stiff.density=2050.0",
                                                fmt::format("materials.stiff.young={:.6g}", 100.0 * young),
@@ -173,17 +245,40 @@ std::vector<StabilityCase> stability_cases() {
                                                "bodies.top_platen.material=\"stiff\"",
                                                "bodies.bottom_platen.material=\"stiff\"",
                                                "bodies.top_platen.prescribed_velocity=[0.0, -1.0]"};
-  add({"contrast-100-dynamic", "platens 100x stiffer than the rock, platen 1 m/s", flattened, stiff_platens,
-       std::nullopt, 200e-6, 0, 120.0, Expectation::Stable, {}});
+  add({"contrast-100-dynamic",
+       "platens 100x stiffer than the rock, platen 1 m/s",
+       flattened,
+       stiff_platens,
+       std::nullopt,
+       200e-6,
+       0,
+       120.0,
+       Expectation::Stable,
+       {}});
   auto stiff_static = stiff_platens;
   stiff_static.push_back("analysis.mode=\"static\"");
-  add({"contrast-100-static", "platens 100x stiffer than the rock, static mode, platen 1 m/s", flattened, stiff_static,
-       std::nullopt, 200e-6, 0, 120.0, Expectation::Stable, {}});
+  add({"contrast-100-static",
+       "platens 100x stiffer than the rock, static mode, platen 1 m/s",
+       flattened,
+       stiff_static,
+       std::nullopt,
+       200e-6,
+       0,
+       120.0,
+       Expectation::Stable,
+       {}});
   // Impossible by construction: the disc moves at 3.5 m/s, so even at the dt floor
   // (dt_max · 1e-6 = 1e-13 s) a step moves it 3.5e-13 m, more than the allowed step displacement
   // 1e-12 × 0.06 m = 6e-14 m. The engine must give up at step 1 with a message, not loop.
-  add({"impossible", "allowed step displacement (6e-14 m) below v0 x dt floor (3.5e-13 m)", impact,
-       {impact_blocks, "analysis.max_displacement_ratio=1e-12"}, std::nullopt, 100e-6, 0, 60.0, Expectation::FailsCleanly,
+  add({"impossible",
+       "allowed step displacement (6e-14 m) below v0 x dt floor (3.5e-13 m)",
+       impact,
+       {impact_blocks, "analysis.max_displacement_ratio=1e-12"},
+       std::nullopt,
+       100e-6,
+       0,
+       60.0,
+       Expectation::FailsCleanly,
        {"numerical trouble at step 1, t = 0 s", "exceeds the allowed", "even with dt at its floor", "worst: block"}});
   return cases;
 }
@@ -201,7 +296,8 @@ std::unique_ptr<dda::Engine> build_case(const StabilityCase& c, const std::files
   scene::Scene sc = scene::load_scene(scenes_dir / c.scene, overrides);
   sc.gauges.clear();  // gauges are not measured here (and lie outside a sliver slab)
   r.mode = sc.analysis.mode == scene::Mode::Static ? "static" : "dynamic";
-  const meshes::Mesh mesh = c.sliver ? make_sliver_slab_mesh(*c.sliver) : meshes::generate_dda_mesh(sc.geometry, sc.mesh);
+  const meshes::Mesh mesh =
+      c.sliver ? make_sliver_slab_mesh(*c.sliver) : meshes::generate_dda_mesh(sc.geometry, sc.mesh);
   r.aspect = max_aspect_ratio(mesh, "disc");
   auto engine = std::make_unique<dda::Engine>(std::move(sc), mesh);
   r.blocks = engine->blocks().block_count();
@@ -222,14 +318,16 @@ dda::Next watch_step(const dda::StepReport& rep, const dda::Engine& e, Stability
   if (!std::isfinite(energy) || !std::isfinite(supplied) || !std::isfinite(rep.max_penetration) ||
       !all_vertices_finite(e.blocks())) {
     r.nan = true;
-    r.message = fmt::format("NaN or infinity at step {}, t = {:.9g} s (energy {}, penetration {}) that the engine did "
-                            "not report",
-                            rep.step, rep.time, energy, rep.max_penetration);
+    r.message = fmt::format(
+        "NaN or infinity at step {}, t = {:.9g} s (energy {}, penetration {}) that the engine did "
+        "not report",
+        rep.step, rep.time, energy, rep.max_penetration);
     return dda::Next::Stop;
   }
   r.energy_max = std::max(r.energy_max, energy);
   r.supplied_max = std::max(r.supplied_max, supplied);
-  const double ratio = supplied > 0.0 ? energy / supplied : (energy > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+  const double ratio =
+      supplied > 0.0 ? energy / supplied : (energy > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
   if (ratio > r.energy_ratio) {
     r.energy_ratio = ratio;
     r.energy_ratio_step = rep.step;
@@ -266,9 +364,10 @@ void judge(const StabilityCase& c, bool guard, StabilityResult& r) {
     r.verdict_text = "unstable: unreported NaN (engine bug)";
   } else if (!(r.energy_ratio <= kEnergyBoundFactor)) {
     r.verdict = Verdict::Unstable;
-    r.verdict_text = fmt::format("unstable: energy {:.3g} x supplied at step {}, t = {:.3g} s (the engine reported no "
-                                 "error; {} contact(s) first detected deeper than one step's displacement, deepest {:.3g} m)",
-                                 r.energy_ratio, r.energy_ratio_step, r.time, r.missed_contacts, r.deepest_missed);
+    r.verdict_text = fmt::format(
+        "unstable: energy {:.3g} x supplied at step {}, t = {:.3g} s (the engine reported no "
+        "error; {} contact(s) first detected deeper than one step's displacement, deepest {:.3g} m)",
+        r.energy_ratio, r.energy_ratio_step, r.time, r.missed_contacts, r.deepest_missed);
   } else if (guard || !r.end_reached) {
     r.verdict = Verdict::DidNotFinish;
     r.verdict_text = "did not finish: " + r.message;
@@ -307,10 +406,11 @@ StabilityResult run_stability_case(const StabilityCase& c, const std::filesystem
       const double wall = omp_get_wtime() - t0;
       if (r.steps < c.max_steps && !(wall > c.max_wall)) return dda::Next::Continue;
       guard = true;
-      r.message = r.steps >= c.max_steps
-                      ? fmt::format("step guard: {} steps reached at t = {:.6g} s of {:.6g} s", r.steps, e.time(), c.end_time)
-                      : fmt::format("wall guard: {:.0f} s reached at step {}, t = {:.6g} s of {:.6g} s", c.max_wall,
-                                    r.steps, e.time(), c.end_time);
+      r.message =
+          r.steps >= c.max_steps
+              ? fmt::format("step guard: {} steps reached at t = {:.6g} s of {:.6g} s", r.steps, e.time(), c.end_time)
+              : fmt::format("wall guard: {:.0f} s reached at step {}, t = {:.6g} s of {:.6g} s", c.max_wall, r.steps,
+                            e.time(), c.end_time);
       return dda::Next::Stop;
     };
     hooks.after_step = [&](const dda::StepReport& rep) {
@@ -338,16 +438,18 @@ StabilityResult run_stability_case(const StabilityCase& c, const std::filesystem
 std::string stability_csv(const std::vector<StabilityResult>& results) {
   std::string out =
       "case,mode,extreme,blocks,aspect,steps,time,end_time,end_reached,nan,energy_max,supplied_max,energy_ratio,"
-      "energy_ratio_step,energy_bound_factor,balance_error,penetration_max,penetration_allowed,cuts_displacement,cuts_open_close,"
+      "energy_ratio_step,energy_bound_factor,balance_error,penetration_max,penetration_allowed,cuts_displacement,cuts_"
+      "open_close,"
       "cuts_solver,dt_min,dt_max,cracks,wall,exit_status,verdict,as_expected,message\n";
   for (const auto& r : results)
-    out += fmt::format("{},{},{},{},{:.4g},{},{:.9g},{:.9g},{},{},{:.6g},{:.6g},{:.6g},{},{},{:.3g},{:.6g},{:.6g},{},{},{},{:.6g},"
-                       "{:.6g},{},{:.3f},{},{},{},{}\n",
-                       r.name, r.mode, csv_field(r.extreme), r.blocks, r.aspect, r.steps, r.time, r.end_time,
-                       r.end_reached ? 1 : 0, r.nan ? 1 : 0, r.energy_max, r.supplied_max, r.energy_ratio,
-                       r.energy_ratio_step, kEnergyBoundFactor, r.balance_error, r.penetration_max, r.penetration_allowed,
-                       r.cuts_displacement, r.cuts_open_close, r.cuts_solver, r.dt_min, r.dt_max, r.cracks, r.wall,
-                       r.exit_status, csv_field(r.verdict_text), r.as_expected ? 1 : 0, csv_field(r.message));
+    out += fmt::format(
+        "{},{},{},{},{:.4g},{},{:.9g},{:.9g},{},{},{:.6g},{:.6g},{:.6g},{},{},{:.3g},{:.6g},{:.6g},{},{},{},{:.6g},"
+        "{:.6g},{},{:.3f},{},{},{},{}\n",
+        r.name, r.mode, csv_field(r.extreme), r.blocks, r.aspect, r.steps, r.time, r.end_time, r.end_reached ? 1 : 0,
+        r.nan ? 1 : 0, r.energy_max, r.supplied_max, r.energy_ratio, r.energy_ratio_step, kEnergyBoundFactor,
+        r.balance_error, r.penetration_max, r.penetration_allowed, r.cuts_displacement, r.cuts_open_close,
+        r.cuts_solver, r.dt_min, r.dt_max, r.cracks, r.wall, r.exit_status, csv_field(r.verdict_text),
+        r.as_expected ? 1 : 0, csv_field(r.message));
   return out;
 }
 
@@ -358,8 +460,10 @@ std::string stability_markdown(const std::vector<StabilityResult>& results) {
       "allowance: {:.2g} × the mean smallest altitude of the triangular blocks.\n\n",
       kEnergyBoundFactor, kPenetrationAllowanceFactor);
   out +=
-      "| case | mode | what is extreme | blocks | steps | end reached | max E/S | balance error | missed contacts | max "
-      "penetration / allowed | dt cuts (displ. / open–close / solver) | open–close failures | min dt (s) | cracks | wall (s) | "
+      "| case | mode | what is extreme | blocks | steps | end reached | max E/S | balance error | missed contacts | "
+      "max "
+      "penetration / allowed | dt cuts (displ. / open–close / solver) | open–close failures | min dt (s) | cracks | "
+      "wall (s) | "
       "exit | verdict |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : results) {
@@ -368,13 +472,13 @@ std::string stability_markdown(const std::vector<StabilityResult>& results) {
                                 ? fmt::format("{:.2e} / {:.2e} m ({:.2g})", r.penetration_max, r.penetration_allowed,
                                               r.penetration_max / r.penetration_allowed)
                                 : std::string("–");
-    out += fmt::format("| {} | {} | {} | {} | {} | {} | {:.4f} | {:.2e} | {} | {} | {} ({} / {} / {}) | {} | {:.2e} | {} | {:.1f} | "
-                       "{} | {} |\n",
-                       r.name, r.mode, md_field(r.extreme), r.blocks, r.steps, reached, r.energy_ratio, r.balance_error,
-                       r.missed_contacts, pen,
-                       r.cuts_displacement + r.cuts_open_close + r.cuts_solver, r.cuts_displacement, r.cuts_open_close,
-                       r.cuts_solver, r.cuts_open_close, r.dt_min, r.cracks, r.wall, r.exit_status,
-                       md_field(r.verdict_text));
+    out += fmt::format(
+        "| {} | {} | {} | {} | {} | {} | {:.4f} | {:.2e} | {} | {} | {} ({} / {} / {}) | {} | {:.2e} | {} | {:.1f} | "
+        "{} | {} |\n",
+        r.name, r.mode, md_field(r.extreme), r.blocks, r.steps, reached, r.energy_ratio, r.balance_error,
+        r.missed_contacts, pen, r.cuts_displacement + r.cuts_open_close + r.cuts_solver, r.cuts_displacement,
+        r.cuts_open_close, r.cuts_solver, r.cuts_open_close, r.dt_min, r.cracks, r.wall, r.exit_status,
+        md_field(r.verdict_text));
   }
   bool messages = false;
   for (const auto& r : results)

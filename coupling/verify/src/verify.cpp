@@ -48,8 +48,9 @@ VerificationReport verify_scene(const scene::Scene& scene, const VerifyOptions& 
   }
   if (is_impact(scene)) return verify_dynamic(scene, options);
   if (std::holds_alternative<meshes::MshFile>(scene.geometry))
-    throw std::invalid_argument(fmt::format("{}: verify needs a generated disc (plain, flattened, slit or impact), not a .msh file",
-                                            scene.source.string()));
+    throw std::invalid_argument(
+        fmt::format("{}: verify needs a generated disc (plain, flattened, slit or impact), not a .msh file",
+                    scene.source.string()));
   return verify_static(scene, options);
 }
 

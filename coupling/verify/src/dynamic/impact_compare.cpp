@@ -33,8 +33,7 @@ std::vector<GaugeError> compare_gauges(const GaugeHistories& model, const GaugeH
     e.arrival_error = (e.syy.approximation_arrival - e.syy.reference_arrival) / e.syy.reference_arrival;
     e.arrival_checked = e.syy.reference_arrival >= settings.min_arrival_time && !reference.near_slot[g] &&
                         e.syy.reference_arrival >= kPhysicalArrivalShare * reference.earliest_arrival[g];
-    e.s1_rms_over_peak =
-        compare_histories(model.s1[g], reference.s1[g], settings.arrival_fraction).rms_over_peak;
+    e.s1_rms_over_peak = compare_histories(model.s1[g], reference.s1[g], settings.arrival_fraction).rms_over_peak;
     out.push_back(e);
   }
   return out;

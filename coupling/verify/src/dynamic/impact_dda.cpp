@@ -8,6 +8,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "ddafrac/common/stopwatch.hpp"
+#include "ddafrac/common/thread_scope.hpp"
 #include "ddafrac/coupling/dda_twin.hpp"
 #include "ddafrac/coupling/impact_runs.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
@@ -15,8 +17,6 @@
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "dynamic/impact_scene.hpp"
-#include "ddafrac/common/stopwatch.hpp"
-#include "ddafrac/common/thread_scope.hpp"
 
 namespace ddafrac::coupling {
 

@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <chrono>
 
+#include "ddafrac/common/stopwatch.hpp"
 #include "ddafrac/coupling/impact_runs.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
 #include "ddafrac/fem/dynamic_problem.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "dynamic/impact_scene.hpp"
-#include "ddafrac/common/stopwatch.hpp"
 
 namespace ddafrac::coupling {
 
@@ -26,7 +26,8 @@ GaugeHistories run_impact_fem(const scene::Scene& scene, const ImpactSettings& s
   GaugeHistories out = gauge_histories_for(scene);
   const auto mesh_start = Clock::now();
   fem::DynamicProblem p;
-  const double size = settings.fem_element_size > 0.0 ? settings.fem_element_size : geometry.diameter / kFemElementsPerDiameter;
+  const double size =
+      settings.fem_element_size > 0.0 ? settings.fem_element_size : geometry.diameter / kFemElementsPerDiameter;
   p.mesh = meshes::generate_fem_mesh(scene.geometry, size, meshes::FemCells::Triangles);
   out.mesh_wall = seconds_since(mesh_start);
   const auto start = Clock::now();

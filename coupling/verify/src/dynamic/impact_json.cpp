@@ -9,15 +9,20 @@ std::string impact_json(const ImpactResults& r, double young) {
   nlohmann::json gauges = nlohmann::json::array();
   for (std::size_t g = 0; g < r.errors.size(); ++g) {
     const auto& e = r.errors[g];
-    gauges.push_back({{"gauge", e.gauge}, {"rms_over_peak_syy", e.syy.rms_over_peak},
-                      {"rms_over_peak_s1", e.s1_rms_over_peak}, {"peak_error", e.peak_error},
-                      {"fem_peak_syy", e.syy.reference_peak.value}, {"dda_peak_syy", e.syy.approximation_peak.value},
-                      {"fem_arrival", e.syy.reference_arrival}, {"dda_arrival", e.syy.approximation_arrival},
-                      {"arrival_error", e.arrival_error}, {"arrival_checked", e.arrival_checked},
+    gauges.push_back({{"gauge", e.gauge},
+                      {"rms_over_peak_syy", e.syy.rms_over_peak},
+                      {"rms_over_peak_s1", e.s1_rms_over_peak},
+                      {"peak_error", e.peak_error},
+                      {"fem_peak_syy", e.syy.reference_peak.value},
+                      {"dda_peak_syy", e.syy.approximation_peak.value},
+                      {"fem_arrival", e.syy.reference_arrival},
+                      {"dda_arrival", e.syy.approximation_arrival},
+                      {"arrival_error", e.arrival_error},
+                      {"arrival_checked", e.arrival_checked},
                       {"fem_half_one_rms_over_peak_syy", r.time_errors[g].syy.rms_over_peak}});
   }
-  nlohmann::json j = comparison_json({"impact", r.dda.blocks, r.dda.steps, r.dda.wall, r.fem.wall, r.fem.dofs,
-                                      r.dda.kn / young});
+  nlohmann::json j =
+      comparison_json({"impact", r.dda.blocks, r.dda.steps, r.dda.wall, r.fem.wall, r.fem.dofs, r.dda.kn / young});
   j["dt"] = r.dda.dt;
   j["cg_total"] = r.dda.cg_total;
   j["dt_cuts"] = r.dda.dt_cuts;

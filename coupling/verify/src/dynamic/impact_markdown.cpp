@@ -25,7 +25,8 @@ std::string newmark(double beta, double gamma, const char* separator = ", ") {
   return "(" + newmark_number(beta) + separator + newmark_number(gamma) + ")";
 }
 
-void scene_paragraph(std::ostream& md, const scene::Scene& scene, const ImpactResults& r, const fem::Material& material) {
+void scene_paragraph(std::ostream& md, const scene::Scene& scene, const ImpactResults& r,
+                     const fem::Material& material) {
   const auto& geometry = impact_geometry(scene);
   const reference::Elastic& m = material.elastic;
   const reference::PlaneModel plane = material.plane;
@@ -50,8 +51,9 @@ void models_table(std::ostream& md, const ImpactResults& r, double young) {
       "| DDA twin | {} blocks, {} bonded unbreakable virtual joints, kn = {:.4g} N/m (kn/E = {:.4g}), patch vertices "
       "held by fixed points of {:.0f} E, dt = {:.3g} s, Newmark {}, {} steps, {} CG iterations (max {} per "
       "solve), {} dt cuts, {} thread(s) | {:.2f} (+ {:.2f} meshing) |\n",
-      dda.blocks, dda.joints, dda.kn, dda.kn / young, settings.anchor_ratio, dda.dt, newmark(kDdaNewmarkBeta, kDdaNewmarkGamma),
-      dda.steps, dda.cg_total, dda.cg_max, dda.dt_cuts, settings.threads, dda.wall, dda.mesh_wall);
+      dda.blocks, dda.joints, dda.kn, dda.kn / young, settings.anchor_ratio, dda.dt,
+      newmark(kDdaNewmarkBeta, kDdaNewmarkGamma), dda.steps, dda.cg_total, dda.cg_max, dda.dt_cuts, settings.threads,
+      dda.wall, dda.mesh_wall);
   md << fmt::format(
       "| FEM reference | P{} triangles, {} refinement(s), element size D/{:.0f}, {} dofs, Newmark {}, dt = {:.3g} "
       "s, {} steps, {} | {:.2f} |\n",
@@ -74,24 +76,27 @@ void gauge_table(std::ostream& md, const scene::Scene& scene, const ImpactResult
   const std::string dda_scheme = newmark(kDdaNewmarkBeta, kDdaNewmarkGamma);
   md << fmt::format(
       "σyy per gauge (arrival: first time |σyy| reaches {:.0f}% of ρ c_p v0; arrival checked where the "
-      "FEM's arrival is ≥ {:.0f} µs and ≥ {:g} × (distance from the patch)/c_p, i.e. not a precursor of the FEM, and the "
-      "gauge is more than one DDA block from the slot). The last column is the FEM with the DDA's Newmark {} at the DDA's dt "
+      "FEM's arrival is ≥ {:.0f} µs and ≥ {:g} × (distance from the patch)/c_p, i.e. not a precursor of the FEM, and "
+      "the "
+      "gauge is more than one DDA block from the slot). The last column is the FEM with the DDA's Newmark {} at the "
+      "DDA's dt "
       "against the reference: the time-integration share of the error.\n\n",
       100.0 * settings.arrival_fraction, settings.min_arrival_time * 1e6, kPhysicalArrivalShare, dda_scheme);
-  md << fmt::format("| gauge | x, y (mm) | FEM peak (MPa) at µs | DDA peak (MPa) at µs | peak error | FEM arrival (µs) | DDA "
-                    "arrival (µs) | arrival error | RMS/peak σyy | RMS/peak σ1 | FEM {} RMS/peak |\n"
-                    "|---|---|---|---|---|---|---|---|---|---|---|\n",
-                    newmark(kDdaNewmarkBeta, kDdaNewmarkGamma, ","));
+  md << fmt::format(
+      "| gauge | x, y (mm) | FEM peak (MPa) at µs | DDA peak (MPa) at µs | peak error | FEM arrival (µs) | DDA "
+      "arrival (µs) | arrival error | RMS/peak σyy | RMS/peak σ1 | FEM {} RMS/peak |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n",
+      newmark(kDdaNewmarkBeta, kDdaNewmarkGamma, ","));
   for (std::size_t g = 0; g < r.errors.size(); ++g) {
     const auto& e = r.errors[g];
-    md << fmt::format("| {} | {:.1f}, {:.1f} | {} at {} | {} at {} | {} | {} | {} | {}{} | {:.3f} | {:.3f} | {:.3f} |\n",
-                      e.gauge, scene.gauges[g].position[0] * 1e3, scene.gauges[g].position[1] * 1e3,
-                      format_mpa(e.syy.reference_peak.value), format_us(e.syy.reference_peak.time),
-                      format_mpa(e.syy.approximation_peak.value), format_us(e.syy.approximation_peak.time),
-                      format_percent(e.peak_error), format_us(e.syy.reference_arrival),
-                      format_us(e.syy.approximation_arrival), format_percent(e.arrival_error),
-                      e.arrival_checked ? "" : " (not checked)", e.syy.rms_over_peak, e.s1_rms_over_peak,
-                      r.time_errors[g].syy.rms_over_peak);
+    md << fmt::format(
+        "| {} | {:.1f}, {:.1f} | {} at {} | {} at {} | {} | {} | {} | {}{} | {:.3f} | {:.3f} | {:.3f} |\n", e.gauge,
+        scene.gauges[g].position[0] * 1e3, scene.gauges[g].position[1] * 1e3, format_mpa(e.syy.reference_peak.value),
+        format_us(e.syy.reference_peak.time), format_mpa(e.syy.approximation_peak.value),
+        format_us(e.syy.approximation_peak.time), format_percent(e.peak_error), format_us(e.syy.reference_arrival),
+        format_us(e.syy.approximation_arrival), format_percent(e.arrival_error),
+        e.arrival_checked ? "" : " (not checked)", e.syy.rms_over_peak, e.s1_rms_over_peak,
+        r.time_errors[g].syy.rms_over_peak);
   }
 }
 

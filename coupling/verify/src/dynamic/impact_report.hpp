@@ -18,10 +18,10 @@ namespace ddafrac::coupling {
 struct ImpactResults {
   ImpactSettings settings;
   GaugeHistories dda, fem;
-  GaugeHistories fem_dda_scheme;       // the FEM with the DDA's Newmark at the DDA's dt
-  std::vector<GaugeError> errors;      // DDA against the FEM reference
-  std::vector<GaugeError> time_errors; // the FEM with the DDA's scheme against the reference
-  ImpactErrorSummary summary;          // of `errors`
+  GaugeHistories fem_dda_scheme;        // the FEM with the DDA's Newmark at the DDA's dt
+  std::vector<GaugeError> errors;       // DDA against the FEM reference
+  std::vector<GaugeError> time_errors;  // the FEM with the DDA's scheme against the reference
+  ImpactErrorSummary summary;           // of `errors`
 };
 
 std::string impact_title();

@@ -59,7 +59,8 @@ GaugeHistories gauge_histories_for(const scene::Scene& s) {
     double nearest = std::numeric_limits<double>::infinity();
     for (int k = -kPatchSamplesPerSide; k <= kPatchSamplesPerSide; ++k) {
       const double angle = -0.5 * kPi + geometry.patch_half_angle * k / static_cast<double>(kPatchSamplesPerSide);
-      nearest = std::min(nearest, std::hypot(g.position[0] - radius * std::cos(angle), g.position[1] - radius * std::sin(angle)));
+      nearest = std::min(
+          nearest, std::hypot(g.position[0] - radius * std::cos(angle), g.position[1] - radius * std::sin(angle)));
     }
     h.earliest_arrival.push_back(nearest / cp);
     h.names.push_back(g.name);

@@ -39,8 +39,8 @@ void run_models(const scene::Scene& scene, bool quiet, ImpactResults& r) {
   };
   say("DDA twin (bonded, unbreakable virtual joints; impact patch held; no gravity)");
   r.dda = run_impact_dda(scene, r.settings);
-  say(fmt::format("DDA {} blocks, {} steps, {:.1f} s; FEM reference (Newmark {})", r.dda.blocks, r.dda.steps, r.dda.wall,
-                  newmark(r.settings.fem_beta, r.settings.fem_gamma)));
+  say(fmt::format("DDA {} blocks, {} steps, {:.1f} s; FEM reference (Newmark {})", r.dda.blocks, r.dda.steps,
+                  r.dda.wall, newmark(r.settings.fem_beta, r.settings.fem_gamma)));
   r.fem = run_impact_fem(scene, r.settings);
   ImpactSettings dda_scheme = r.settings;
   dda_scheme.fem_beta = kDdaNewmarkBeta;

@@ -14,7 +14,8 @@ std::vector<Check> static_checks(const StaticSetup& st, const StaticComparison& 
   }
   if (tol.field_l2) {
     checks.push_back({"field L2 (sxx, syy, txy), DDA vs FEM", "field_l2", c.dda_fem.all, *tol.field_l2});
-    if (st.analytic) checks.push_back({"field L2 (sxx, syy, txy), DDA vs Hondros", "field_l2", c.dda_ana.all, *tol.field_l2});
+    if (st.analytic)
+      checks.push_back({"field L2 (sxx, syy, txy), DDA vs Hondros", "field_l2", c.dda_ana.all, *tol.field_l2});
   }
   return checks;
 }

@@ -51,7 +51,8 @@ FieldError field_error(const std::vector<BlockSample>& blocks, Stress2 BlockSamp
     const Stress2& p = b.*approx;
     const Stress2& q = b.*ref;
     // τxy counts twice in the Frobenius norm of the tensor.
-    for (const auto& [va, vr] : {std::pair{p.xx, q.xx}, std::pair{p.yy, q.yy}, std::pair{std::sqrt(2.0) * p.xy, std::sqrt(2.0) * q.xy}}) {
+    for (const auto& [va, vr] :
+         {std::pair{p.xx, q.xx}, std::pair{p.yy, q.yy}, std::pair{std::sqrt(2.0) * p.xy, std::sqrt(2.0) * q.xy}}) {
       a.push_back(w * va);
       r.push_back(w * vr);
     }
@@ -63,7 +64,8 @@ FieldError field_error(const std::vector<BlockSample>& blocks, Stress2 BlockSamp
     rxy.push_back(w * q.xy);
   }
   using reference::relative_l2_error;
-  return {relative_l2_error(a, r), relative_l2_error(axx, rxx), relative_l2_error(ayy, ryy), relative_l2_error(axy, rxy)};
+  return {relative_l2_error(a, r), relative_l2_error(axx, rxx), relative_l2_error(ayy, ryy),
+          relative_l2_error(axy, rxy)};
 }
 
 /// Area-weighted mean over the blocks whose centroid lies within `radius` of the centre.
@@ -112,14 +114,16 @@ std::string where_is(const BlockSample& b, const StaticSetup& st, double h) {
   if (st.slit) {
     const double c = std::cos(st.slit->inclination), s = std::sin(st.slit->inclination);
     for (const double sign : {1.0, -1.0})
-      if (std::hypot(b.x - sign * 0.5 * st.slit->length * c, b.y - sign * 0.5 * st.slit->length * s) < kNearBlockSizes * h)
+      if (std::hypot(b.x - sign * 0.5 * st.slit->length * c, b.y - sign * 0.5 * st.slit->length * s) <
+          kNearBlockSizes * h)
         return "near a slit tip";
   }
   if (st.flattened && std::abs(b.y) > st.radius * std::cos(st.half_angle) - kNearBlockSizes * h &&
       std::abs(b.x) < st.radius * std::sin(st.half_angle) + kNearBlockSizes * h)
     return b.y > 0 ? "near the top flat" : "near the bottom flat (supports differ)";
   const double from_axis = std::min(std::abs(theta - kPi / 2), std::abs(theta + kPi / 2));
-  if (!st.flattened && r > st.radius - kNearBlockSizes * h && from_axis < st.half_angle + kNearBlockSizes * h / st.radius)
+  if (!st.flattened && r > st.radius - kNearBlockSizes * h &&
+      from_axis < st.half_angle + kNearBlockSizes * h / st.radius)
     return "near a loaded arc";
   if (r > st.radius - kFreeRimBlockSizes * h) return "at the free rim";
   return "interior";
@@ -160,7 +164,8 @@ std::vector<ProfileSample> sample_profiles(const StaticSetup& st, const StaticDd
   std::vector<ProfileSample> out;
   const double rr = st.radius * (1.0 - kProfileRimClearance);
   const double ry = st.flattened ? rr * std::cos(st.half_angle) : rr;
-  for (const auto& [name, x0, y0, x1, y1] : {std::tuple{"loaded", 0.0, -ry, 0.0, ry}, std::tuple{"horizontal", -rr, 0.0, rr, 0.0}}) {
+  for (const auto& [name, x0, y0, x1, y1] :
+       {std::tuple{"loaded", 0.0, -ry, 0.0, ry}, std::tuple{"horizontal", -rr, 0.0, rr, 0.0}}) {
     for (int k = 0; k < kProfilePoints; ++k) {
       const double t = static_cast<double>(k) / (kProfilePoints - 1);
       const double x = x0 + t * (x1 - x0), y = y0 + t * (y1 - y0);

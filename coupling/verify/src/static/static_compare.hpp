@@ -57,7 +57,7 @@ struct WorstBlock {
 
 /// One point of a profile: the DDA block stress there (deformed blocks), the FEM, the series.
 struct ProfileSample {
-  const char* profile = "";  // "loaded" or "horizontal"
+  const char* profile = "";          // "loaded" or "horizontal"
   double s = 0.0, x = 0.0, y = 0.0;  // m: position along the diameter, and the point
   reference::Stress2 dda, fem, ana;  // Pa; ana NaN unless the Hondros series applies
 };
@@ -66,13 +66,13 @@ struct StaticComparison {
   std::vector<BlockSample> blocks;
   std::size_t outside_fem = 0;  // centroids outside the FEM mesh, left out
   bool has_centre = false;
-  double centre_radius = 0.0;   // m
+  double centre_radius = 0.0;                             // m
   reference::Stress2 centre_dda, centre_fem, centre_ana;  // Pa, area-weighted means
-  reference::Stress2 centre_point_ana;                   // Pa, the series at the centre point
+  reference::Stress2 centre_point_ana;                    // Pa, the series at the centre point
   CentreError centre_dda_fem, centre_dda_ana, centre_fem_ana;
   FieldError dda_fem, dda_fem_inner, dda_ana, fem_ana;  // the last two only with the series
-  double fem_rms = 0.0;         // Pa, area-weighted RMS of the FEM stress tensor norm
-  double near_distance = 0.0;   // m, kNearBlockSizes mean block sizes
+  double fem_rms = 0.0;                                 // Pa, area-weighted RMS of the FEM stress tensor norm
+  double near_distance = 0.0;                           // m, kNearBlockSizes mean block sizes
   std::vector<WorstBlock> worst;
   std::map<std::string, int> worst_where;  // how many of the worst blocks are where
   std::vector<ProfileSample> profiles;

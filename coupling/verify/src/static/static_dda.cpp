@@ -22,11 +22,11 @@
 
 #include "ddafrac/common/angles.hpp"
 #include "ddafrac/common/polygon.hpp"
+#include "ddafrac/common/stopwatch.hpp"
+#include "ddafrac/common/thread_scope.hpp"
 #include "ddafrac/coupling/dda_twin.hpp"
 #include "ddafrac/dda/drive.hpp"
 #include "ddafrac/meshes/generate.hpp"
-#include "ddafrac/common/stopwatch.hpp"
-#include "ddafrac/common/thread_scope.hpp"
 
 namespace ddafrac::coupling {
 
@@ -77,8 +77,8 @@ void add_force(NodalForces& nodal, std::size_t cell, meshes::Index node, double 
 }
 
 /// Uniform pressure normal to a flat, pointing into the disc, on the edge a-b.
-void add_flat_edge(NodalForces& nodal, std::size_t cell, const meshes::BoundaryEdge& e, const meshes::Mesh& m,
-                   bool top, double pressure) {
+void add_flat_edge(NodalForces& nodal, std::size_t cell, const meshes::BoundaryEdge& e, const meshes::Mesh& m, bool top,
+                   double pressure) {
   const auto& a = m.nodes[e.a];
   const auto& b = m.nodes[e.b];
   const double lx = b.x - a.x, ly = b.y - a.y, l = std::hypot(lx, ly);
@@ -136,7 +136,8 @@ std::vector<dda::PointLoad> consistent_loads(const meshes::Mesh& m, const Static
     const auto it = owner.find(edge_key(e.a, e.b));
     if (it == owner.end()) continue;
     if (st.flattened) {
-      if (group == "flat_top" || group == "flat_bottom") add_flat_edge(nodal, it->second, e, m, group == "flat_top", st.pressure);
+      if (group == "flat_top" || group == "flat_bottom")
+        add_flat_edge(nodal, it->second, e, m, group == "flat_top", st.pressure);
     } else if (group == "rim" || group == "load_top" || group == "load_bottom") {
       add_arc_edge(nodal, it->second, e, m, st);
     }
@@ -242,12 +243,14 @@ void step_to_rest(dda::Engine& engine, double pressure, int max_steps, bool quie
     out.last_step_ratio = report.max_displacement / std::max(total, 1e-300);
     out.step_ratios.push_back(out.last_step_ratio);
     double change = 0.0;
-    for (std::size_t i = 0; i < b.block_count(); ++i) change = std::max(change, (b.stress[i] - previous[i]).cwiseAbs().maxCoeff());
+    for (std::size_t i = 0; i < b.block_count(); ++i)
+      change = std::max(change, (b.stress[i] - previous[i]).cwiseAbs().maxCoeff());
     out.last_stress_change = change / pressure;
     previous = b.stress;
     if (!quiet)
-      fmt::print("verify: DDA step {}: largest step displacement / total {:.2e}, largest stress change / pressure {:.2e}\n",
-                 report.step, out.last_step_ratio, out.last_stress_change);
+      fmt::print(
+          "verify: DDA step {}: largest step displacement / total {:.2e}, largest stress change / pressure {:.2e}\n",
+          report.step, out.last_step_ratio, out.last_stress_change);
     return taken >= 2 && out.last_step_ratio < kStaticTolerance ? dda::Next::Stop : dda::Next::Continue;
   };
   dda::drive(engine, std::numeric_limits<double>::infinity(), hooks);  // no end time: until at rest
@@ -275,7 +278,8 @@ StaticDdaRun run_static_dda(const scene::Scene& scene, const StaticSetup& st, co
   record_blocks(b, out);
   step_to_rest(engine, st.pressure, o.max_steps > 0 ? o.max_steps : kStaticDefaultMaxSteps, o.quiet, out);
   out.anchor_force = eo.anchor_penalty_factor * out.kn * out.anchor_rigid;
-  for (std::size_t i = 0; i < out.blocks.size(); ++i) out.blocks[i].stress = {b.stress[i][0], b.stress[i][1], b.stress[i][2]};
+  for (std::size_t i = 0; i < out.blocks.size(); ++i)
+    out.blocks[i].stress = {b.stress[i][0], b.stress[i][1], b.stress[i][2]};
   out.wall = seconds_since(start);
   return out;
 }

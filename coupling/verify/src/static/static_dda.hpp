@@ -37,8 +37,8 @@ inline constexpr int kStaticDefaultMaxSteps = 40;
 
 /// One block of the twin: undeformed centroid and area, and its stress at the end of the run.
 struct BlockStress {
-  double x = 0.0, y = 0.0;  // m
-  double area = 0.0;        // m²
+  double x = 0.0, y = 0.0;    // m
+  double area = 0.0;          // m²
   reference::Stress2 stress;  // Pa
 };
 
@@ -46,21 +46,21 @@ struct StaticDdaRun {
   std::vector<BlockStress> blocks;
   long steps = 0;
   long dt_cuts = 0;
-  double dt = 0.0;                  // s, the twin's time step
-  double wall = 0.0, mesh_wall = 0.0;  // s
-  double last_step_ratio = 0.0;     // last step's largest displacement / largest total displacement
-  double last_stress_change = 0.0;  // max |Δσ| over the last step / the pressure
-  std::vector<double> step_ratios;  // per step: largest step displacement / largest total displacement
+  double dt = 0.0;                      // s, the twin's time step
+  double wall = 0.0, mesh_wall = 0.0;   // s
+  double last_step_ratio = 0.0;         // last step's largest displacement / largest total displacement
+  double last_stress_change = 0.0;      // max |Δσ| over the last step / the pressure
+  std::vector<double> step_ratios;      // per step: largest step displacement / largest total displacement
   double max_total_displacement = 0.0;  // m
   std::size_t anchors = 0;
-  double anchor_rigid = 0.0;        // largest rigid-body displacement the anchors resisted, m
-  double anchor_force = 0.0;        // largest anchor spring force, N/m
-  std::size_t loads = 0;            // point loads
-  double applied_resultant = 0.0;   // |Σ f| of the point loads, N/m
-  double applied_top = 0.0;         // vertical resultant on the upper half, N/m
-  double kn = 0.0;                  // N/m, of the bonded joints
-  double ks_over_kn = 0.0;          // of the bonded joints
-  double mean_block_size = 0.0;     // m, sqrt(disc area / blocks)
+  double anchor_rigid = 0.0;       // largest rigid-body displacement the anchors resisted, m
+  double anchor_force = 0.0;       // largest anchor spring force, N/m
+  std::size_t loads = 0;           // point loads
+  double applied_resultant = 0.0;  // |Σ f| of the point loads, N/m
+  double applied_top = 0.0;        // vertical resultant on the upper half, N/m
+  double kn = 0.0;                 // N/m, of the bonded joints
+  double ks_over_kn = 0.0;         // of the bonded joints
+  double mean_block_size = 0.0;    // m, sqrt(disc area / blocks)
   std::string solver;
   std::unique_ptr<dda::Engine> engine;  // the final state: profiles sample its deformed blocks
 };

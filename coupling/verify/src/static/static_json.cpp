@@ -13,8 +13,8 @@ nlohmann::json pair(const CentreError& e) { return {e.xx, e.yy}; }
 
 std::string static_json(const StaticResults& r, double young) {
   const StaticComparison& c = r.comparison;
-  nlohmann::json j = comparison_json({"static", r.dda.blocks.size(), r.dda.steps, r.dda.wall, r.fem.wall, r.fem.dofs,
-                                      r.dda.kn / young});
+  nlohmann::json j = comparison_json(
+      {"static", r.dda.blocks.size(), r.dda.steps, r.dda.wall, r.fem.wall, r.fem.dofs, r.dda.kn / young});
   j["load"] = r.setup.load;
   j["last_step_ratio"] = r.dda.last_step_ratio;
   j["anchor_force"] = r.dda.anchor_force;

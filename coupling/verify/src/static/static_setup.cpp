@@ -30,7 +30,8 @@ StaticSetup static_setup(const scene::Scene& s) {
     out.pressure = out.load / (out.half_angle * out.diameter);
     out.slit = slit->slit;
   } else {
-    throw std::invalid_argument("verify_static: the scene is not a static Brazilian disc (plain, flattened or slit disc)");
+    throw std::invalid_argument(
+        "verify_static: the scene is not a static Brazilian disc (plain, flattened or slit disc)");
   }
   return out;
 }

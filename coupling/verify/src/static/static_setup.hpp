@@ -10,14 +10,14 @@
 namespace ddafrac::coupling {
 
 struct StaticSetup {
-  double diameter = 0.0;    // m
-  double radius = 0.0;      // m
+  double diameter = 0.0;  // m
+  double radius = 0.0;    // m
   bool flattened = false;
   double half_angle = 0.0;  // rad: of the Hondros arcs (plain/slit disc), or half the flat angle (flattened)
   double load = 0.0;        // N/m, nominal diametral load P
   double pressure = 0.0;    // Pa, on the arcs or the flats
   std::optional<meshes::Slit> slit;
-  bool analytic = false;    // the Hondros series applies (plain disc without slit)
+  bool analytic = false;                        // the Hondros series applies (plain disc without slit)
   meshes::Geometry dda_geometry, fem_geometry;  // flattened disc: without its platens
 };
 

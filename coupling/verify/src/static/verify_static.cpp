@@ -18,17 +18,18 @@ namespace ddafrac::coupling {
 
 VerificationReport verify_static(const scene::Scene& scene, const VerifyOptions& options) {
   if (!scene.verification || !scene.verification->load)
-    throw std::invalid_argument(fmt::format("{}: verification.load is missing (the diametral load of the comparison, N/m)",
-                                            scene.source.string()));
+    throw std::invalid_argument(fmt::format(
+        "{}: verification.load is missing (the diametral load of the comparison, N/m)", scene.source.string()));
   const auto say = [&](const std::string& what) {
     if (!options.quiet) fmt::print("verify: {}\n", what);
   };
   StaticResults r;
   r.setup = static_setup(scene);
-  say(fmt::format("DDA twin of {} ({} blocks target), static, P = {:.4g} N/m", scene.name, scene.mesh.target_blocks, r.setup.load));
+  say(fmt::format("DDA twin of {} ({} blocks target), static, P = {:.4g} N/m", scene.name, scene.mesh.target_blocks,
+                  r.setup.load));
   r.dda = run_static_dda(scene, r.setup, options);
-  say(fmt::format("DDA {} blocks, {} steps, {:.2f} s; FEM p = {}, {} refinement(s)", r.dda.blocks.size(), r.dda.steps, r.dda.wall,
-                  options.fem_degree, options.fem_refine));
+  say(fmt::format("DDA {} blocks, {} steps, {:.2f} s; FEM p = {}, {} refinement(s)", r.dda.blocks.size(), r.dda.steps,
+                  r.dda.wall, options.fem_degree, options.fem_refine));
   r.fem = run_static_fem(scene, r.setup, options);
   say(fmt::format("FEM {} dofs, {:.2f} s", r.fem.dofs, r.fem.wall));
   r.comparison = compare_static(r.setup, r.dda, r.fem);

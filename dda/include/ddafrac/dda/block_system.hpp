@@ -14,9 +14,9 @@ namespace ddafrac::dda {
 
 /// Elastic data of one material, with the plane model already applied.
 struct MaterialData {
-  double density = 0.0;  // kg/m^3
-  double young = 0.0;    // Pa
-  double poisson = 0.0;  // -
+  double density = 0.0;            // kg/m^3
+  double young = 0.0;              // Pa
+  double poisson = 0.0;            // -
   Mat3 elastic = Mat3::Zero();     // σ = elastic · (εx, εy, γxy)
   Mat3 compliance = Mat3::Zero();  // its inverse
 };
@@ -47,40 +47,40 @@ const char* to_string(CrackType t);
 /// until it breaks. Setting `broken` makes its contacts real joints from the next detection on
 /// (the engine's fracture check does it and records the failure type; tests may do it directly).
 struct Joint {
-  Index block_a = 0, block_b = 0;          // block_a < block_b
-  meshes::Index node_a = 0, node_b = 0;    // mesh nodes of the shared edge
-  Index vertex_a = -1, vertex_b = -1;      // vertices of block_a at node_a / node_b (BlockSystem::vx)
-  double length = 0.0;                      // m
-  Index joint_set = 0;                      // index into Scene::joint_sets
+  Index block_a = 0, block_b = 0;        // block_a < block_b
+  meshes::Index node_a = 0, node_b = 0;  // mesh nodes of the shared edge
+  Index vertex_a = -1, vertex_b = -1;    // vertices of block_a at node_a / node_b (BlockSystem::vx)
+  double length = 0.0;                   // m
+  Index joint_set = 0;                   // index into Scene::joint_sets
   bool broken = false;
-  CrackType failure = CrackType::None;      // set by the fracture check when it breaks
+  CrackType failure = CrackType::None;  // set by the fracture check when it breaks
 };
 
 struct BlockSystem {
   // Vertices, compressed per block: block b owns vertex_offsets[b] .. vertex_offsets[b+1], CCW.
   std::vector<Index> vertex_offsets{0};
-  std::vector<double> vx, vy;               // current vertex coordinates, m
-  std::vector<meshes::Index> vertex_node;   // mesh node each vertex came from
+  std::vector<double> vx, vy;              // current vertex coordinates, m
+  std::vector<meshes::Index> vertex_node;  // mesh node each vertex came from
 
   // Per block.
-  std::vector<Index> body;        // index into Scene::bodies (-1: body not in the scene)
-  std::vector<Index> mesh_body;   // index into Mesh::body_names
-  std::vector<Index> material;    // index into materials
+  std::vector<Index> body;       // index into Scene::bodies (-1: body not in the scene)
+  std::vector<Index> mesh_body;  // index into Mesh::body_names
+  std::vector<Index> material;   // index into materials
   std::vector<PolygonIntegrals> geometry;
-  std::vector<double> mass;       // kg per unit thickness, fixed at t = 0 (ρ·initial area): the
-                                  // mass matrix uses ρ_eff = mass/area so strain never changes it
-  std::vector<double> min_edge;   // shortest edge of the block, m
-  std::vector<Vec6> velocity;     // (u̇0, v̇0, ṙ0, ε̇x, ε̇y, γ̇xy)
-  std::vector<Vec3> stress;       // (σxx, σyy, τxy), Pa, tension positive
-  std::vector<Vec3> strain;       // accumulated (εx, εy, γxy)
+  std::vector<double> mass;      // kg per unit thickness, fixed at t = 0 (ρ·initial area): the
+                                 // mass matrix uses ρ_eff = mass/area so strain never changes it
+  std::vector<double> min_edge;  // shortest edge of the block, m
+  std::vector<Vec6> velocity;    // (u̇0, v̇0, ṙ0, ε̇x, ε̇y, γ̇xy)
+  std::vector<Vec3> stress;      // (σxx, σyy, τxy), Pa, tension positive
+  std::vector<Vec3> strain;      // accumulated (εx, εy, γxy)
 
   std::vector<MaterialData> materials;
-  std::vector<Anchor> anchors;               // sorted by block
-  std::vector<Index> anchor_offsets;         // per block, into anchors
-  std::vector<PointLoad> loads;              // sorted by block
-  std::vector<Index> load_offsets;           // per block, into loads
-  std::vector<Joint> joints;                 // sorted by (block_a, block_b)
-  std::vector<Index> joint_offsets;          // per block, CSR into joint_of_block
+  std::vector<Anchor> anchors;        // sorted by block
+  std::vector<Index> anchor_offsets;  // per block, into anchors
+  std::vector<PointLoad> loads;       // sorted by block
+  std::vector<Index> load_offsets;    // per block, into loads
+  std::vector<Joint> joints;          // sorted by (block_a, block_b)
+  std::vector<Index> joint_offsets;   // per block, CSR into joint_of_block
   std::vector<Index> joint_of_block;
 
   double model_half_height = 0.0;  // half the initial y extent of the model, m
@@ -95,8 +95,7 @@ struct BlockSystem {
 /// prescribed bodies (every vertex of such a block), initial velocities, and the joint table
 /// (edges shared by two cells of one body that has virtual joints, if bond_virtual_joints).
 /// Extra point loads and anchors (tests, benchmarks) are added on top.
-BlockSystem build_block_system(const scene::Scene& scene, const meshes::Mesh& mesh,
-                               bool bond_virtual_joints,
+BlockSystem build_block_system(const scene::Scene& scene, const meshes::Mesh& mesh, bool bond_virtual_joints,
                                const std::vector<PointLoad>& extra_loads = {},
                                const std::vector<Anchor>& extra_anchors = {});
 

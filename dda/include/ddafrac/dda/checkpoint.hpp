@@ -27,10 +27,10 @@ struct Checkpoint {
   /// Fingerprint of the engine's carried state at t = 0: a resume checks that the scene and the
   /// mesh it rebuilt are the ones the run started from.
   std::uint64_t initial_state = 0;
-  long step = 0;           // accepted steps when it was written
-  double time = 0.0;       // s, simulated
-  std::string engine;      // Engine::carried_state()
-  std::string run_log;     // the run loop's own state (run.cpp)
+  long step = 0;        // accepted steps when it was written
+  double time = 0.0;    // s, simulated
+  std::string engine;   // Engine::carried_state()
+  std::string run_log;  // the run loop's own state (run.cpp)
 };
 
 /// 64-bit FNV-1a of the bytes: a fingerprint, not a cryptographic hash.

@@ -49,8 +49,8 @@ struct Contact {
   double tan_phi = 0.0;
   double cohesion = 0.0, tensile_strength = 0.0;  // Pa, of the joint set (used while cohesive)
   // Per step (geometry at step start): gap, shear and their linearisations.
-  double d0 = 0.0;        // normal gap, m, positive = apart
-  double s0 = 0.0;        // shear displacement from the reference point along the edge, m
+  double d0 = 0.0;  // normal gap, m, positive = apart
+  double s0 = 0.0;  // shear displacement from the reference point along the edge, m
   double edge_length = 0.0;
   Vec6 e = Vec6::Zero(), g = Vec6::Zero();    // d ≈ d0 + e·D_v + g·D_e
   Vec6 es = Vec6::Zero(), gs = Vec6::Zero();  // s ≈ s0 + es·D_v + gs·D_e
@@ -83,12 +83,12 @@ struct ContactSet {
   std::vector<ContactPair> pairs;
   std::vector<Index> block_contact_offsets;  // CSR: contacts touching each block, ascending
   std::vector<Index> block_contacts;
-  std::vector<Index> block_pair_offsets;     // CSR: pairs touching each block, by other block
+  std::vector<Index> block_pair_offsets;  // CSR: pairs touching each block, by other block
   std::vector<Index> block_pairs;
 };
 
 struct DetectionParams {
-  double search_distance = 0.0;     // m: vertices farther than this from an edge are ignored
+  double search_distance = 0.0;  // m: vertices farther than this from an edge are ignored
   // m: margin of the pair list (Verlet list): pairs within search distance + skin are kept, and
   // the list is rebuilt once some vertex has moved more than half the skin since it was built.
   // A wider skin rebuilds less often but hands the narrow phase more pairs; the contacts found
@@ -133,8 +133,8 @@ struct BlockBoxes {
 
 /// Detection state kept between steps: the pair list and scratch space (no reallocation).
 struct DetectionWorkspace {
-  BlockBoxes boxes;        // per block, grown by half the search distance
-  BlockBoxes reach_boxes;  // grown by half of search distance + skin (pair-list builds)
+  BlockBoxes boxes;                       // per block, grown by half the search distance
+  BlockBoxes reach_boxes;                 // grown by half of search distance + skin (pair-list builds)
   std::vector<std::vector<Index>> pairs;  // pair list: per block, partner blocks > it, ascending
   std::vector<double> built_x, built_y;   // vertex positions when the pair list was built
   long pair_list_builds = 0;
@@ -143,7 +143,7 @@ struct DetectionWorkspace {
   std::vector<double> ax, ay, bx, by, wedge_start, wedge_open, enx, eny, elen;
   std::vector<char> convex;
   std::vector<Index> cell_offsets, cell_blocks;
-  std::vector<std::vector<Index>> candidates;  // per block: partner blocks > it
+  std::vector<std::vector<Index>> candidates;        // per block: partner blocks > it
   std::vector<std::vector<ContactCandidate>> found;  // per block: contacts of its pairs
   ContactsByVertex previous_by_vertex;               // the previous step's contacts
 };
@@ -166,8 +166,9 @@ void detect_contacts(const BlockSystem& blocks, const DetectionParams& params, D
 /// vanished (0). `previous_by_vertex` indexes `previous` (DetectionWorkspace after detection).
 /// (docs/design.md §4.7)
 std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& previous,
-                                                 const ContactsByVertex& previous_by_vertex, std::vector<Contact>& current,
-                                                 const std::vector<Joint>& joints, const BlockSystem& blocks);
+                                                 const ContactsByVertex& previous_by_vertex,
+                                                 std::vector<Contact>& current, const std::vector<Joint>& joints,
+                                                 const BlockSystem& blocks);
 
 /// Fills pairs and per-block lists of a sorted contact list.
 void build_contact_topology(ContactSet& set, std::size_t block_count);

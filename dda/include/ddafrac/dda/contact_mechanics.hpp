@@ -13,8 +13,7 @@ namespace ddafrac::dda {
 /// Stiffness and friction of every contact from its joint set (bonded joints: their virtual
 /// joint set; others, broken joints included: the scene's real joints). kn and ks are the joint
 /// set's (the scene parser fills in their defaults, scene/defaults.hpp).
-void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem& blocks,
-                               const scene::Scene& scene);
+void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem& blocks, const scene::Scene& scene);
 
 /// l_c of a cohesive contact: half the overlap of the reference edge with the vertex's own edge
 /// that lies along it (within `angle_tolerance`, rad). A face bonded along its length has a

@@ -14,9 +14,9 @@ namespace ddafrac::dda {
 inline constexpr double kMinStepsPerContactPeriod = 8.0;
 
 struct ContactPeriod {
-  double period = 0.0;     // s
-  double mass = 0.0;       // kg per unit thickness, of the lightest block
-  double stiffness = 0.0;  // N/m per unit thickness, the stiffest contact spring
+  double period = 0.0;      // s
+  double mass = 0.0;        // kg per unit thickness, of the lightest block
+  double stiffness = 0.0;   // N/m per unit thickness, the stiffest contact spring
   double x = 0.0, y = 0.0;  // m, centroid of the lightest block
   /// Moving blocks whose own period on the stiffest spring is shorter than `dt` times
   /// kMinStepsPerContactPeriod (the `dt` passed in).

@@ -26,14 +26,14 @@ inline constexpr double kThroughCrackFragmentFraction = 0.1;
 
 /// The cracks and fragments of one body that has virtual joints, at one time.
 struct BodyCracks {
-  Index body = -1;        // Scene::bodies index
-  double area = 0.0;      // m², at t = 0
-  long cracks_tensile = 0, cracks_shear = 0;  // joints broken in tension / in shear
-  long cracks_untyped = 0;                    // joints broken with no failure type (set by hand)
+  Index body = -1;                                  // Scene::bodies index
+  double area = 0.0;                                // m², at t = 0
+  long cracks_tensile = 0, cracks_shear = 0;        // joints broken in tension / in shear
+  long cracks_untyped = 0;                          // joints broken with no failure type (set by hand)
   double length_tensile = 0.0, length_shear = 0.0;  // m, summed lengths of those joints
-  long fragments = 0;                // groups of blocks joined by intact joints
-  long through_fragments = 0;        // of them, those of ≥ kThroughCrackFragmentFraction · area
-  double largest_fragment_area = 0.0;  // m²
+  long fragments = 0;                               // groups of blocks joined by intact joints
+  long through_fragments = 0;                       // of them, those of ≥ kThroughCrackFragmentFraction · area
+  double largest_fragment_area = 0.0;               // m²
 };
 
 struct CrackHistory {

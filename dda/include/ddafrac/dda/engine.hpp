@@ -19,33 +19,32 @@ namespace ddafrac::dda {
 
 struct EngineOptions {
   SolverSettings solver;
-  bool bond_virtual_joints = true;        // same-body shared edges start as bonded joints
-  double anchor_penalty_factor = 100.0;   // fixed/prescribed point springs = factor·penalty (N/m)
-  double allowed_displacement = 0.0;      // m; 0 = max_displacement_ratio · half model height
-  double dt_cut_factor = 0.3;             // dt ×= this on a failed step
-  double dt_grow_factor = 1.2;            // dt ×= this after an easy step, up to dt_max
-  int easy_open_close = 2;                // "easy" = converged within this many iterations
-  double dt_floor_fraction = 1e-6;        // dt below dt_max·this = numerical trouble
-  double mass_damping = 0.0;              // η of C = ηM, 1/s (off by default)
-  double state_tolerance = 1e-4;          // open-close hysteresis / allowed step displacement
-  DetectionParams detection;              // search_distance and skin: from the scene's analysis
-  std::vector<PointLoad> point_loads;     // extra loads (tests, benchmarks)
-  std::vector<Anchor> anchors;            // extra fixed/prescribed points
+  bool bond_virtual_joints = true;       // same-body shared edges start as bonded joints
+  double anchor_penalty_factor = 100.0;  // fixed/prescribed point springs = factor·penalty (N/m)
+  double allowed_displacement = 0.0;     // m; 0 = max_displacement_ratio · half model height
+  double dt_cut_factor = 0.3;            // dt ×= this on a failed step
+  double dt_grow_factor = 1.2;           // dt ×= this after an easy step, up to dt_max
+  int easy_open_close = 2;               // "easy" = converged within this many iterations
+  double dt_floor_fraction = 1e-6;       // dt below dt_max·this = numerical trouble
+  double mass_damping = 0.0;             // η of C = ηM, 1/s (off by default)
+  double state_tolerance = 1e-4;         // open-close hysteresis / allowed step displacement
+  DetectionParams detection;             // search_distance and skin: from the scene's analysis
+  std::vector<PointLoad> point_loads;    // extra loads (tests, benchmarks)
+  std::vector<Anchor> anchors;           // extra fixed/prescribed points
 };
 
 /// Wall time per phase, s.
 struct PhaseTimes {
-  double detection = 0.0, assembly = 0.0, solve = 0.0, judgement = 0.0, fracture = 0.0, update = 0.0,
-         output = 0.0;
+  double detection = 0.0, assembly = 0.0, solve = 0.0, judgement = 0.0, fracture = 0.0, update = 0.0, output = 0.0;
   double total() const { return detection + assembly + solve + judgement + fracture + update + output; }
 };
 
 /// One virtual joint breaking: at the end of the accepted step at time t.
 struct CrackEvent {
-  double t = 0.0;         // s
+  double t = 0.0;           // s
   double x = 0.0, y = 0.0;  // joint midpoint, m
   CrackType type = CrackType::None;
-  Index joint = -1;       // BlockSystem::joints index
+  Index joint = -1;           // BlockSystem::joints index
   double r1 = 0.0, r2 = 0.0;  // f_n / f_t,max and |f_s| / f_s,max at the break
 };
 
@@ -72,14 +71,14 @@ struct FailureRatios {
 FailureRatios failure_ratios(const JointForce& f, double length, const scene::JointSet& strength);
 
 struct StepReport {
-  long step = 0;            // number of this accepted step (1-based)
-  double time = 0.0;        // s, at the end of the step
-  double dt = 0.0;          // s, accepted
-  int open_close = 0;       // iterations of the accepted attempt
-  int cg_iterations = 0;    // over all solves of the step, retries included
-  int cuts = 0;             // dt cuts before acceptance
-  std::size_t new_cracks = 0;  // joints broken by this step's fracture check
-  CrackCounts cracks;          // cumulative, after this step
+  long step = 0;                  // number of this accepted step (1-based)
+  double time = 0.0;              // s, at the end of the step
+  double dt = 0.0;                // s, accepted
+  int open_close = 0;             // iterations of the accepted attempt
+  int cg_iterations = 0;          // over all solves of the step, retries included
+  int cuts = 0;                   // dt cuts before acceptance
+  std::size_t new_cracks = 0;     // joints broken by this step's fracture check
+  CrackCounts cracks;             // cumulative, after this step
   double max_displacement = 0.0;  // m, largest vertex displacement of the step
   double max_penetration = 0.0;   // m, deepest closed contact after the step
   std::size_t contacts = 0, closed = 0, sliding = 0;
@@ -108,15 +107,14 @@ struct Statistics {
   // mesh's cells or bodies interpenetrate at t = 0, and their springs push them apart at once.
   long initial_overlaps = 0;
   double deepest_initial_overlap = 0.0;  // m
-  long pair_list_builds = 0;    // contact pair list (Verlet list) builds
+  long pair_list_builds = 0;             // contact pair list (Verlet list) builds
   PhaseTimes times;
 };
 
 /// Which terms the time loop composed (summary.json lists them).
 struct ActiveTerms {
-  bool dynamic = true, elasticity = true, initial_stress = true, gravity = false, point_loads = false,
-       anchors = false, contacts = false, friction = false, cohesion = false, bonded_joints = false,
-       fracture = false, damping = false;
+  bool dynamic = true, elasticity = true, initial_stress = true, gravity = false, point_loads = false, anchors = false,
+       contacts = false, friction = false, cohesion = false, bonded_joints = false, fracture = false, damping = false;
   std::vector<std::string> names() const;
 };
 

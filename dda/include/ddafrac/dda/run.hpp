@@ -31,20 +31,20 @@ struct Progress {
   long step = 0;
   double dt = 0.0;
   int open_close = 0, cg_iterations = 0;  // of the latest step
-  double wall = 0.0;                       // s since the run started
+  double wall = 0.0;                      // s since the run started
 };
 
 struct RunOptions {
   std::filesystem::path out_dir;
-  int threads = 1;          // recorded in summary.json (the caller sets the OpenMP thread count)
+  int threads = 1;  // recorded in summary.json (the caller sets the OpenMP thread count)
   /// Called between steps, where the caller may change the OpenMP thread count (results do not
   /// depend on it); returns the count in use. summary.json records the fewest used and how
   /// often it changed.
   std::function<int()> between_steps;
-  double setup_wall = 0.0;  // s the caller spent meshing and building the engine (summary.json)
-  long max_steps = 0;       // stop after this many steps (0: run to the scene's end time)
-  int history_every = 1;    // history.csv row every N accepted steps
-  bool vtk = true;          // snapshots at every output interval
+  double setup_wall = 0.0;      // s the caller spent meshing and building the engine (summary.json)
+  long max_steps = 0;           // stop after this many steps (0: run to the scene's end time)
+  int history_every = 1;        // history.csv row every N accepted steps
+  bool vtk = true;              // snapshots at every output interval
   double progress_every = 0.1;  // wall seconds between progress callbacks
   std::function<void(const Progress&)> progress;
   /// Stop request: the number of the signal received (set by a handler owned by the caller),
@@ -75,7 +75,7 @@ struct RunResult {
   long steps = 0;
   double time = 0.0;
   double wall = 0.0;
-  int threads_fewest = 0;       // smallest thread count used (RunOptions::between_steps)
+  int threads_fewest = 0;  // smallest thread count used (RunOptions::between_steps)
   int thread_count_changes = 0;
 };
 

@@ -41,14 +41,14 @@ struct DynamicProblem {
   Material material;
   Discretisation discretisation;
   Newmark newmark;
-  double v0 = 3.5;                           // m/s, initial speed of the disc towards -y
-  std::string held_group = "impact_patch";   // boundary group held from t = 0 (or pulsed)
+  double v0 = 3.5;                          // m/s, initial speed of the disc towards -y
+  std::string held_group = "impact_patch";  // boundary group held from t = 0 (or pulsed)
   /// If set, the patch is loaded by this pulse instead of held (v0 still sets the initial rigid
   /// motion; use 0 for a disc at rest).
   std::optional<TractionPulse> pulse;
-  double dt = 1e-7;                          // s
-  double end_time = 20e-6;                   // s
-  double output_interval = 1e-7;             // s between gauge/energy samples
+  double dt = 1e-7;               // s
+  double end_time = 20e-6;        // s
+  double output_interval = 1e-7;  // s between gauge/energy samples
   std::vector<GaugePoint> gauges;
   /// With a directory and an interval > 0: VTU snapshots (displacement, velocity, sxx, syy,
   /// txy, s1, s3) at t = 0 and every interval, as vtk/snapshot_NNNNNN.vtu, listed in run.pvd
@@ -58,8 +58,8 @@ struct DynamicProblem {
 };
 
 struct GaugeRecord {
-  double t = 0.0;           // s
-  std::size_t gauge = 0;    // index into DynamicProblem::gauges
+  double t = 0.0;         // s
+  std::size_t gauge = 0;  // index into DynamicProblem::gauges
   StressSample sample;
 };
 

@@ -45,10 +45,10 @@ StressSample make_sample(double x, double y, const Stress2& stress);
 struct RunStats {
   std::size_t cells = 0;
   std::size_t dofs = 0;
-  std::string solver;             // the linear solver used
-  int iterations = 0;             // CG iterations (static; the dynamic problem solves directly)
-  double setup_seconds = 0.0;     // mesh, dofs, assembly, AMG
-  double solve_seconds = 0.0;     // CG (+ time loop)
+  std::string solver;          // the linear solver used
+  int iterations = 0;          // CG iterations (static; the dynamic problem solves directly)
+  double setup_seconds = 0.0;  // mesh, dofs, assembly, AMG
+  double solve_seconds = 0.0;  // CG (+ time loop)
 };
 
 /// Thrown for problems the FEM cannot set up (unsupported cells, a missing boundary group,

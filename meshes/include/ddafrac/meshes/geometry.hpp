@@ -49,8 +49,8 @@ struct SlitDisc {
 /// "impact_patch" = the rim arc of half-angle patch_half_angle about the lowest point).
 struct ImpactDisc {
   double diameter = 0.1;
-  double joint_angle = 0.0;   // θ
-  double connectivity = 0.25; // γ = joint length / diameter, in (0, 1)
+  double joint_angle = 0.0;    // θ
+  double connectivity = 0.25;  // γ = joint length / diameter, in (0, 1)
   double joint_width = 0.0004;
   double plate_width = 0.1;
   double plate_height = 0.02;

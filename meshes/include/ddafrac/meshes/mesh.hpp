@@ -30,7 +30,7 @@ struct Mesh {
   std::vector<Index> cell_offsets{0};
   std::vector<Index> cell_nodes;
   std::vector<Index> cell_body;
-  std::vector<std::string> body_names;      // physical surface groups
+  std::vector<std::string> body_names;  // physical surface groups
   std::vector<BoundaryEdge> boundary_edges;
   std::vector<std::string> boundary_names;  // physical curve groups
 

@@ -21,7 +21,6 @@ struct Rgb {
 Rgb body_colour(std::size_t body);
 
 /// Writes the file whole (temporary name, then rename).
-void write_mesh_png(const Mesh& mesh, const std::filesystem::path& path,
-                    const PictureOptions& options = {});
+void write_mesh_png(const Mesh& mesh, const std::filesystem::path& path, const PictureOptions& options = {});
 
 }  // namespace ddafrac::meshes

@@ -13,9 +13,9 @@ namespace ddafrac::scene {
 /// One problem found in a scene file: where, which key, and what was expected.
 struct Problem {
   std::string file;
-  int line = 0;    // 1-based; 0 when the problem is not tied to a line (e.g. a missing table)
+  int line = 0;  // 1-based; 0 when the problem is not tied to a line (e.g. a missing table)
   int column = 0;
-  std::string key; // dotted path, e.g. "analysis.dt_max"
+  std::string key;  // dotted path, e.g. "analysis.dt_max"
   std::string message;
 
   std::string to_string() const;  // "file:line:column: key: message"

@@ -37,7 +37,7 @@ enum class Role { Disc, Platen, Plate };
 enum class Motion { Free, Fixed, Prescribed };
 
 struct Body {
-  std::string name;      // a body (physical surface group) of the geometry
+  std::string name;  // a body (physical surface group) of the geometry
   Role role = Role::Disc;
   Motion motion = Motion::Free;
   std::size_t material = 0;                   // index into Scene::materials
@@ -73,18 +73,18 @@ struct Gauge {
 struct Output {
   bool vtk = true;
   bool figures = true;
-  double crack_interval = 150e-6;  // s, bin width of incremental crack counts
+  double crack_interval = 150e-6;    // s, bin width of incremental crack counts
   std::vector<double> figure_times;  // s, crack-pattern pictures
 };
 
 /// Pass/fail tolerances of `ddafrac verify`, relative errors (dimensionless).
 /// A key left out is not checked; `ddafrac verify` says which keys its comparison needs.
 struct Verification {
-  std::optional<double> load;            // N/m, diametral load of a static comparison
-  std::optional<double> centre_stress;   // |σ − σ_ref| / |σ_ref| of centre σxx and σyy
-  std::optional<double> field_l2;        // relative L2 of (σxx, σyy, τxy) at block centroids
-  std::optional<double> arrival_time;    // |t − t_ref| / t_ref of the P-wave arrival at a gauge
-  std::optional<double> gauge_rms;       // RMS(σ − σ_ref) / |peak σ_ref| of a gauge history
+  std::optional<double> load;           // N/m, diametral load of a static comparison
+  std::optional<double> centre_stress;  // |σ − σ_ref| / |σ_ref| of centre σxx and σyy
+  std::optional<double> field_l2;       // relative L2 of (σxx, σyy, τxy) at block centroids
+  std::optional<double> arrival_time;   // |t − t_ref| / t_ref of the P-wave arrival at a gauge
+  std::optional<double> gauge_rms;      // RMS(σ − σ_ref) / |peak σ_ref| of a gauge history
 };
 
 struct Scene {

@@ -65,8 +65,7 @@ Stress2 hondros_series(const Disc& disc, const HondrosLoad& load, double x, doub
 
 /// Full field as a superposition of radial rim forces (Gauss-Legendre over each arc with
 /// `points_per_arc` points): an independent check of the series away from the loaded arcs.
-Stress2 hondros_superposition(const Disc& disc, const HondrosLoad& load, double x, double y,
-                              int points_per_arc = 400);
+Stress2 hondros_superposition(const Disc& disc, const HondrosLoad& load, double x, double y, int points_per_arc = 400);
 
 /// Flattened disc (flats of central angle `flat_angle`, total flat load P): the arc-mapped
 /// approximation, i.e. Hondros loading on arcs of the same central angle carrying the same

@@ -35,8 +35,8 @@ constexpr double kPenetrationAllowanceFactor = 0.1;
 /// rectangles of (width/columns) × (height/rows), each cut along a diagonal. The slab's bottom edge
 /// touches the plate's top edge at y = 0; the slab is centred on x = 0.
 struct SliverSlab {
-  double width = 0.1, height = 0.02;            // m
-  int columns = 6, rows = 30;                    // 16.7 mm × 0.67 mm cells: aspect ratio 25
+  double width = 0.1, height = 0.02;               // m
+  int columns = 6, rows = 30;                      // 16.7 mm × 0.67 mm cells: aspect ratio 25
   double plate_width = 0.12, plate_height = 0.02;  // m
 };
 meshes::Mesh make_sliver_slab_mesh(const SliverSlab& slab);
@@ -48,12 +48,12 @@ double max_aspect_ratio(const meshes::Mesh& mesh, const std::string& body = "dis
 enum class Expectation { Stable, FailsCleanly };
 
 enum class Verdict {
-  Stable,             // end time reached, no NaN, energy within the bound, penetration within allowance
-  PenetrationHigh,    // as Stable, but the deepest penetration exceeds the allowance
-  FailedCleanly,      // the engine stopped with NumericalTrouble (exit status 3) and a message
-  Unstable,           // NaN (not reported by the engine) or energy above the bound
-  DidNotFinish,       // the case's step or wall-time guard stopped it before its end time
-  Error               // anything else (scene, mesh, unexpected exception)
+  Stable,           // end time reached, no NaN, energy within the bound, penetration within allowance
+  PenetrationHigh,  // as Stable, but the deepest penetration exceeds the allowance
+  FailedCleanly,    // the engine stopped with NumericalTrouble (exit status 3) and a message
+  Unstable,         // NaN (not reported by the engine) or energy above the bound
+  DidNotFinish,     // the case's step or wall-time guard stopped it before its end time
+  Error             // anything else (scene, mesh, unexpected exception)
 };
 const char* to_string(Verdict v);
 
@@ -84,25 +84,25 @@ struct StabilityResult {
   double time = 0.0, end_time = 0.0;  // s
   bool end_reached = false;
   bool nan = false;
-  double energy_max = 0.0;          // J/m, largest E(t)
-  double energy_ratio = 0.0;        // max over steps of E(t) / S(t)
-  long energy_ratio_step = 0;       // where that maximum was
-  double supplied_max = 0.0;        // J/m, largest S(t)
-  double balance_error = 0.0;       // largest |balance error| of the energy ledger
-  double penetration_max = 0.0;     // m
-  double penetration_allowed = 0.0; // m
+  double energy_max = 0.0;           // J/m, largest E(t)
+  double energy_ratio = 0.0;         // max over steps of E(t) / S(t)
+  long energy_ratio_step = 0;        // where that maximum was
+  double supplied_max = 0.0;         // J/m, largest S(t)
+  double balance_error = 0.0;        // largest |balance error| of the energy ledger
+  double penetration_max = 0.0;      // m
+  double penetration_allowed = 0.0;  // m
   long cuts_displacement = 0, cuts_open_close = 0, cuts_solver = 0;
   double dt_min = 0.0, dt_max = 0.0;  // s, accepted steps
   long cracks = 0;
-  long missed_contacts = 0;         // first detected deeper than one step's allowed displacement
-  double deepest_missed = 0.0;      // m
-  double wall = 0.0;                // s, meshing included
-  int exit_status = 0;              // as `ddafrac run`: 0 completed, 3 numerical trouble (1 other errors)
-  std::string message;              // engine message on trouble, guard or error description
+  long missed_contacts = 0;     // first detected deeper than one step's allowed displacement
+  double deepest_missed = 0.0;  // m
+  double wall = 0.0;            // s, meshing included
+  int exit_status = 0;          // as `ddafrac run`: 0 completed, 3 numerical trouble (1 other errors)
+  std::string message;          // engine message on trouble, guard or error description
   Verdict verdict = Verdict::Error;
-  std::string verdict_text;         // verdict with its reason
-  bool as_expected = false;         // Stable: verdict Stable or PenetrationHigh (an accuracy warning);
-                                    // FailsCleanly: FailedCleanly with every expected message part
+  std::string verdict_text;  // verdict with its reason
+  bool as_expected = false;  // Stable: verdict Stable or PenetrationHigh (an accuracy warning);
+                             // FailsCleanly: FailedCleanly with every expected message part
 };
 
 struct StabilityProgress {

@@ -20,10 +20,10 @@ inline constexpr double kPhysicalArrivalShare = 0.9;
 struct GaugeError {
   std::string gauge;
   reference::HistoryComparison syy;  // RMS/peak, peaks, arrivals
-  double peak_error = 0.0;      // (|peak| − |peak_ref|) / |peak_ref|: negative = the model's peak is smaller
-  double arrival_error = 0.0;   // (t − t_ref) / t_ref, signed
-  bool arrival_checked = false; // reference arrival >= min_arrival_time, not beside the slot
-  double s1_rms_over_peak = 0.0;  // RMS(σ1 − σ1_ref) / max |σ1_ref|
+  double peak_error = 0.0;           // (|peak| − |peak_ref|) / |peak_ref|: negative = the model's peak is smaller
+  double arrival_error = 0.0;        // (t − t_ref) / t_ref, signed
+  bool arrival_checked = false;      // reference arrival >= min_arrival_time, not beside the slot
+  double s1_rms_over_peak = 0.0;     // RMS(σ1 − σ1_ref) / max |σ1_ref|
 };
 
 std::vector<GaugeError> compare_gauges(const GaugeHistories& model, const GaugeHistories& reference,

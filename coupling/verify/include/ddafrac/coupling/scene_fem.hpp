@@ -2,10 +2,10 @@
 // How a scene becomes a FEM problem: the disc's material and plane model, its diameter, and
 // the conventions of the static load (shared by `ddafrac fem` and `ddafrac verify`).
 
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/fem/elasticity.hpp"
 #include "ddafrac/meshes/geometry.hpp"
 #include "ddafrac/scene/scene.hpp"
-#include "ddafrac/common/angles.hpp"
 
 namespace ddafrac::coupling {
 

@@ -19,11 +19,11 @@ struct Check {
 };
 
 struct VerificationReport {
-  std::string title;       // e.g. "Static Brazilian disc: DDA vs FEM vs Hondros"
-  std::string markdown;    // section for verification.md: settings, run times, error tables, plots
+  std::string title;     // e.g. "Static Brazilian disc: DDA vs FEM vs Hondros"
+  std::string markdown;  // section for verification.md: settings, run times, error tables, plots
   std::vector<Check> checks;
-  double dda_wall = 0.0;   // s
-  double fem_wall = 0.0;   // s
+  double dda_wall = 0.0;  // s
+  double fem_wall = 0.0;  // s
   /// Passed when there is at least one check and every check passes.
   bool passed() const {
     return !checks.empty() && std::all_of(checks.begin(), checks.end(), [](const Check& c) { return c.passed(); });

@@ -28,9 +28,9 @@ struct VerifyOptions {
   /// keeping its ks/kn; <= 0 keeps the scene's values. The joints' compliance lowers the twin's
   /// effective modulus (effective_modulus_ratio, impact_runs.hpp).
   double stiffness_ratio = 100.0;
-  int max_steps = 0;              // cap on DDA steps (0: the comparison's own default)
-  bool figures = true;            // draw PNGs (matplotlib) into out_dir
-  bool quiet = false;             // no progress lines on stdout
+  int max_steps = 0;    // cap on DDA steps (0: the comparison's own default)
+  bool figures = true;  // draw PNGs (matplotlib) into out_dir
+  bool quiet = false;   // no progress lines on stdout
 };
 
 /// The scene's [verification] keys a comparison needs, as "verification.<key>" names, that
