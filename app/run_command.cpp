@@ -319,7 +319,7 @@ void run_run(const RunArguments& given) {
                "warning: {} contact(s) were first detected already deeper than one step's allowed displacement "
                "(deepest {:.3g} m, allowed {:.3g} m): their springs released energy at once. Mostly triangles that "
                "share only a mesh node and overlap through the compliance of the joints around it (see "
-               "missed_contacts in summary.json and the stability study in the README)\n",
+               "missed_contacts in summary.json and the stability study, docs/results/stability.md)\n",
                st.missed_contacts, st.deepest_missed, engine->allowed_displacement());
   if (st.initial_overlaps > 0)
     fmt::print(stderr,
