@@ -255,6 +255,93 @@ std::vector<Engine::BodyLoad> Engine::body_loads() const {
   return out;
 }
 
+Engine::OpenClose Engine::iterate_open_close(StepReport& rep) {
+  const int cap = std::max(1, scene_.analysis.open_close_max);
+  const auto n = static_cast<std::int64_t>(blocks_.block_count());
+  OpenClose oc;
+  while (oc.iterations < cap) {
+    ++oc.iterations;
+    {
+      Timer t(stats_.times.assembly);
+      assemble(oc.iterations == 1);
+    }
+    SolveReport sr;
+    {
+      Timer t(stats_.times.solve);
+      sr = solve(matrix_, set_, rhs_, d_, options_.solver, solver_work_);
+    }
+    ++stats_.solves;
+    stats_.cg_total += sr.iterations;
+    stats_.cg_max = std::max(stats_.cg_max, sr.iterations);
+    rep.cg_iterations += sr.iterations;
+    for (std::int64_t i = 0; i < n; ++i)
+      if (!d_[i].allFinite()) trouble("NaN in the solution at " + describe_block(static_cast<Index>(i)));
+    if (!sr.converged) {
+      oc.solver_ok = false;
+      return oc;
+    }
+    Timer t(stats_.times.judgement);
+    if (judge(oc.worst_contact)) {
+      oc.converged = true;
+      return oc;
+    }
+  }
+  return oc;
+}
+
+double Engine::largest_step_displacement(Index& worst) const {
+  const auto n = static_cast<std::int64_t>(blocks_.block_count());
+  std::vector<double> block_disp(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const PolygonIntegrals& g = blocks_.geometry[i];
+    double m = 0.0;
+    for (Index v = blocks_.begin(i); v < blocks_.end(i); ++v)
+      m = std::max(m, (displacement_matrix(g.cx, g.cy, blocks_.vx[v], blocks_.vy[v]) * d_[i]).norm());
+    block_disp[static_cast<std::size_t>(i)] = m;
+  }
+  worst = -1;
+  double dmax = 0.0;
+  for (std::int64_t i = 0; i < n; ++i)
+    if (block_disp[static_cast<std::size_t>(i)] > dmax) {
+      dmax = block_disp[static_cast<std::size_t>(i)];
+      worst = static_cast<Index>(i);
+    }
+  return dmax;
+}
+
+void Engine::record_step(StepReport& rep) {
+  ++stats_.steps;
+  stats_.dt_min = stats_.steps == 1 ? rep.dt : std::min(stats_.dt_min, rep.dt);
+  stats_.dt_max = std::max(stats_.dt_max, rep.dt);
+  stats_.dt_sum += rep.dt;
+  stats_.open_close_total += rep.open_close;
+  stats_.open_close_max = std::max(stats_.open_close_max, rep.open_close);
+  rep.contacts = set_.contacts.size();
+  const auto nc = static_cast<std::int64_t>(set_.contacts.size());
+  std::size_t closed = 0, sliding = 0;
+  double deepest = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : closed, sliding) reduction(max : deepest)
+  for (std::int64_t k = 0; k < nc; ++k) {
+    const Contact& c = set_.contacts[k];
+    if (c.state == ContactState::Open) continue;
+    ++closed;
+    if (c.state == ContactState::Sliding) ++sliding;
+    deepest = std::max(deepest, -c.d_iter);
+  }
+  rep.closed = closed;
+  rep.sliding = sliding;
+  rep.max_penetration = deepest;
+  stats_.max_penetration = std::max(stats_.max_penetration, rep.max_penetration);
+  {
+    Timer t(stats_.times.update);
+    rep.energy = energies();
+  }
+  ledger_.stored = rep.energy;
+  ledger_.largest_balance_error = std::max(ledger_.largest_balance_error, std::abs(ledger_.balance_error()));
+  rep.ledger = ledger_;
+}
+
 StepReport Engine::step(double max_dt) {
   StepReport rep;
   if (step_ == 0) ledger_.initial = energies().stored();
@@ -264,11 +351,10 @@ StepReport Engine::step(double max_dt) {
   }
   const auto& an = scene_.analysis;
   const double dt_floor = an.dt_max * options_.dt_floor_fraction;
-  const int cap = std::max(1, an.open_close_max);
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
-  std::vector<double> block_disp(static_cast<std::size_t>(n));
-  BlockVector d_prev = d_;
+  const BlockVector d_prev = d_;
   int cuts = 0;
+  // Solve, judge and check the step; cut dt and start again until the step is acceptable.
   for (;;) {
     const double dt = std::min(dt_, max_dt);
     // Warm start: the previous step's displacement, scaled to the new step length.
@@ -279,37 +365,9 @@ StepReport Engine::step(double max_dt) {
       Timer t(stats_.times.assembly);
       block_terms(dt);
     }
-    bool converged = false, solver_ok = true;
-    int it = 0, worst_contact = -1;
-    while (it < cap) {
-      ++it;
-      {
-        Timer t(stats_.times.assembly);
-        assemble(it == 1);
-      }
-      SolveReport sr;
-      {
-        Timer t(stats_.times.solve);
-        sr = solve(matrix_, set_, rhs_, d_, options_.solver, solver_work_);
-      }
-      ++stats_.solves;
-      stats_.cg_total += sr.iterations;
-      stats_.cg_max = std::max(stats_.cg_max, sr.iterations);
-      rep.cg_iterations += sr.iterations;
-      for (std::int64_t i = 0; i < n; ++i)
-        if (!d_[i].allFinite()) trouble("NaN in the solution at " + describe_block(static_cast<Index>(i)));
-      if (!sr.converged) {
-        solver_ok = false;
-        break;
-      }
-      Timer t(stats_.times.judgement);
-      if (judge(worst_contact)) {
-        converged = true;
-        break;
-      }
-    }
-    if (!converged) {
-      if (solver_ok)
+    const OpenClose oc = iterate_open_close(rep);
+    if (!oc.converged) {
+      if (oc.solver_ok)
         ++stats_.cuts_open_close;
       else
         ++stats_.cuts_solver;
@@ -317,29 +375,15 @@ StepReport Engine::step(double max_dt) {
       dt_ = dt * options_.dt_cut_factor;
       reset_trials();
       if (dt_ < dt_floor) {
-        if (!solver_ok) trouble("the linear solver did not converge and dt fell below its floor");
+        if (!oc.solver_ok) trouble("the linear solver did not converge and dt fell below its floor");
         trouble(
             fmt::format("open-close iteration did not converge in {} iterations and dt fell below its floor; worst: {}",
-                        cap, describe_contact(worst_contact)));
+                        oc.iterations, describe_contact(oc.worst_contact)));
       }
       continue;
     }
-    // Displacement-ratio check (largest vertex displacement of the step).
-#pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) {
-      const PolygonIntegrals& g = blocks_.geometry[i];
-      double m = 0.0;
-      for (Index v = blocks_.begin(i); v < blocks_.end(i); ++v)
-        m = std::max(m, (displacement_matrix(g.cx, g.cy, blocks_.vx[v], blocks_.vy[v]) * d_[i]).norm());
-      block_disp[static_cast<std::size_t>(i)] = m;
-    }
     Index worst = -1;
-    double dmax = 0.0;
-    for (std::int64_t i = 0; i < n; ++i)
-      if (block_disp[static_cast<std::size_t>(i)] > dmax) {
-        dmax = block_disp[static_cast<std::size_t>(i)];
-        worst = static_cast<Index>(i);
-      }
+    const double dmax = largest_step_displacement(worst);
     if (dmax > allowed_) {
       ++stats_.cuts_displacement;
       ++cuts;
@@ -351,7 +395,6 @@ StepReport Engine::step(double max_dt) {
                         dmax, allowed_, describe_block(worst)));
       continue;
     }
-    // Accept.
     {
       Timer t(stats_.times.update);
       accept(dt);
@@ -367,48 +410,17 @@ StepReport Engine::step(double max_dt) {
     rep.cracks = crack_counts_;
     ++step_;
     dt_prev_ = dt;
-    if (cuts == 0 && it <= options_.easy_open_close && dt_ < an.dt_max)
+    if (cuts == 0 && oc.iterations <= options_.easy_open_close && dt_ < an.dt_max)
       dt_ = std::min(an.dt_max, dt_ * options_.dt_grow_factor);
     rep.step = step_;
     rep.time = time_;
     rep.dt = dt;
-    rep.open_close = it;
+    rep.open_close = oc.iterations;
     rep.cuts = cuts;
     rep.max_displacement = dmax;
     break;
   }
-  // Statistics of the accepted step.
-  ++stats_.steps;
-  stats_.dt_min = stats_.steps == 1 ? rep.dt : std::min(stats_.dt_min, rep.dt);
-  stats_.dt_max = std::max(stats_.dt_max, rep.dt);
-  stats_.dt_sum += rep.dt;
-  stats_.open_close_total += rep.open_close;
-  stats_.open_close_max = std::max(stats_.open_close_max, rep.open_close);
-  rep.contacts = set_.contacts.size();
-  {
-    const auto nc = static_cast<std::int64_t>(set_.contacts.size());
-    std::size_t closed = 0, sliding = 0;
-    double deepest = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : closed, sliding) reduction(max : deepest)
-    for (std::int64_t k = 0; k < nc; ++k) {
-      const Contact& c = set_.contacts[k];
-      if (c.state == ContactState::Open) continue;
-      ++closed;
-      if (c.state == ContactState::Sliding) ++sliding;
-      deepest = std::max(deepest, -c.d_iter);
-    }
-    rep.closed = closed;
-    rep.sliding = sliding;
-    rep.max_penetration = deepest;
-  }
-  stats_.max_penetration = std::max(stats_.max_penetration, rep.max_penetration);
-  {
-    Timer t(stats_.times.update);
-    rep.energy = energies();
-  }
-  ledger_.stored = rep.energy;
-  ledger_.largest_balance_error = std::max(ledger_.largest_balance_error, std::abs(ledger_.balance_error()));
-  rep.ledger = ledger_;
+  record_step(rep);
   return rep;
 }
 

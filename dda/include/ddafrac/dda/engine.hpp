@@ -188,6 +188,19 @@ class Engine {
   /// coefficients changed since the previous assembly of the step touch.
   void assemble(bool whole);
   bool judge(int& changed_first);
+  /// How the open-close iteration of one trial step ended.
+  struct OpenClose {
+    bool converged = false;  // no contact changed state
+    bool solver_ok = true;   // every solve converged
+    int iterations = 0;      // solves made
+    int worst_contact = -1;  // first contact that still changed state
+  };
+  /// Assemble, solve and judge until no contact changes state (at most analysis.open_close_max).
+  OpenClose iterate_open_close(StepReport& rep);
+  /// The largest vertex displacement of the step's solution, m, and the block it belongs to.
+  double largest_step_displacement(Index& worst) const;
+  /// Statistics, contact counts and the energy ledger of an accepted step.
+  void record_step(StepReport& rep);
   void reset_trials();
   StepEnergy block_step_energy(double dt) const;
   void accept(double dt);
