@@ -23,6 +23,7 @@
 #include "ddafrac/fem/static_problem.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "fem_session.hpp"
+#include "option_checks.hpp"
 #include "scene_source.hpp"
 
 namespace ddafrac::app {
@@ -217,9 +218,7 @@ void register_fem_command(CLI::App& app) {
       app.add_subcommand("fem", "deal.II continuum reference of the scene's disc (static or impact dynamics)");
   args->scene.add_to(*command);
   command->add_option("--out", args->out, "output directory (default runs/<scene name>/fem)");
-  command->add_option("--degree", args->degree, "polynomial degree (1 or 2)")
-      ->check(CLI::Range(1, 2))
-      ->capture_default_str();
+  add_fem_degree_option(*command, "--degree", args->degree);
   command->add_option("--refine", args->refine, "uniform refinements of the FEM mesh")
       ->check(CLI::Range(0, 6))
       ->capture_default_str();

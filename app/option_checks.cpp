@@ -54,4 +54,16 @@ CLI::Validator positive_number() { return number_from_zero(false); }
 
 CLI::Validator non_negative_number() { return number_from_zero(true); }
 
+CLI::Option* add_dda_threads_option(CLI::App& command, int& threads) {
+  return command.add_option("--threads", threads, "OpenMP threads of the DDA")
+      ->check(whole_number(1, kMaxThreads))
+      ->capture_default_str();
+}
+
+CLI::Option* add_fem_degree_option(CLI::App& command, const std::string& name, int& degree) {
+  return command.add_option(name, degree, "FEM polynomial degree (1 or 2)")
+      ->check(CLI::Range(1, 2))
+      ->capture_default_str();
+}
+
 }  // namespace ddafrac::app

@@ -197,12 +197,8 @@ void register_study_convergence(CLI::App& study) {
       ->delimiter(',')
       ->capture_default_str();
   command->add_option("--out", args->out, "output directory (default runs/<scene name>/convergence)");
-  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")
-      ->check(whole_number(1, kMaxThreads))
-      ->capture_default_str();
-  command->add_option("--degree", args->degree, "FEM polynomial degree (1 or 2)")
-      ->check(CLI::Range(1, 2))
-      ->capture_default_str();
+  add_dda_threads_option(*command, args->threads);
+  add_fem_degree_option(*command, "--degree", args->degree);
   command
       ->add_option("--fem-refine", args->fem_refine,
                    "uniform refinements of the FEM reference: one value, or one per level (e.g. 0,0,1,1,2)")

@@ -184,12 +184,8 @@ void register_study_penalty(CLI::App& study) {
       ->delimiter(',')
       ->capture_default_str();
   command->add_option("--end-time", args->end_time, "simulated time in s (default: the scene's)");
-  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")
-      ->check(whole_number(1, kMaxThreads))
-      ->capture_default_str();
-  command->add_option("--fem-degree", args->fem_degree, "FEM polynomial degree")
-      ->check(CLI::Range(1, 2))
-      ->capture_default_str();
+  add_dda_threads_option(*command, args->threads);
+  add_fem_degree_option(*command, "--fem-degree", args->fem_degree);
   command->add_option("--fem-refine", args->fem_refine, "uniform refinements of the FEM mesh")
       ->check(CLI::Range(0, 4))
       ->capture_default_str();

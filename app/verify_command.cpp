@@ -143,12 +143,8 @@ void register_verify_command(CLI::App& app) {
                                          "PASS/FAIL against its [verification] tolerances");
   args->scene.add_to(*command);
   command->add_option("--out", args->out, "output directory (default runs/<scene name>/verify)");
-  command->add_option("--threads", args->threads, "OpenMP threads of the DDA")
-      ->check(whole_number(1, kMaxThreads))
-      ->capture_default_str();
-  command->add_option("--degree", args->degree, "FEM polynomial degree (1 or 2)")
-      ->check(CLI::Range(1, 2))
-      ->capture_default_str();
+  add_dda_threads_option(*command, args->threads);
+  add_fem_degree_option(*command, "--degree", args->degree);
   command->add_option("--refine", args->refine, "uniform refinements of the FEM mesh (element size D/25)")
       ->check(CLI::Range(0, 5))
       ->capture_default_str();
