@@ -40,7 +40,7 @@ std::optional<double> peak_force(const json& summary) {
   return peak;
 }
 
-std::string table_row(const SourceCase& c) {
+std::string table_row(const StudyCase& c) {
   const json s = read_summary(c.run.run_dir);
   if (s.is_discarded()) {
     const std::string state = c.run.exit_code > 0 ? fmt::format(
@@ -77,8 +77,8 @@ std::string table_row(const SourceCase& c) {
 }
 
 /// The crack-metric definitions as the runs wrote them (so the report cannot drift from the code).
-std::string definitions(const std::vector<SourceCase>& cases) {
-  for (const SourceCase& c : cases) {
+std::string definitions(const std::vector<StudyCase>& cases) {
+  for (const StudyCase& c : cases) {
     const json s = read_summary(c.run.run_dir);
     if (s.is_discarded() || !s.contains("crack_metrics")) continue;
     const json& d = s["crack_metrics"]["definitions"];
@@ -91,7 +91,7 @@ std::string definitions(const std::vector<SourceCase>& cases) {
 
 }  // namespace
 
-std::string study_markdown(const std::vector<SourceCase>& cases, const std::vector<std::string>& overrides,
+std::string study_markdown(const std::vector<StudyCase>& cases, const std::vector<std::string>& overrides,
                            const std::vector<std::string>& figures) {
   std::string md = "# The source study\n\n";
   md += fmt::format(
@@ -105,7 +105,7 @@ std::string study_markdown(const std::vector<SourceCase>& cases, const std::vect
       "| fragments | largest fragment (%) | first crack (µs) | through crack (µs) | peak force (kN/m) "
       "| largest energy-balance error (%) | missed contacts | exit |\n";
   md += "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
-  for (const SourceCase& c : cases) md += table_row(c);
+  for (const StudyCase& c : cases) md += table_row(c);
   if (!figures.empty()) {
     md += "\n## Figures\n\n";
     for (const std::string& f : figures) md += fmt::format("![{}]({})\n\n", f, f);
@@ -113,9 +113,9 @@ std::string study_markdown(const std::vector<SourceCase>& cases, const std::vect
   return md;
 }
 
-std::string study_csv(const std::vector<SourceCase>& cases, const fs::path& out) {
+std::string study_csv(const std::vector<StudyCase>& cases, const fs::path& out) {
   std::string csv = "case,series,run_dir,exit_reason\n";
-  for (const SourceCase& c : cases) {
+  for (const StudyCase& c : cases) {
     const json s = read_summary(c.run.run_dir);
     const std::string reason = !s.is_discarded() && s.contains("exit") ? s["exit"].value("reason", "") : "";
     csv += fmt::format("{},{},{},{}\n", c.run.scene.name, c.series,

@@ -7,23 +7,17 @@
 #include <string>
 #include <vector>
 
-#include "case_runs.hpp"
+#include "study_runs.hpp"
 
 namespace ddafrac::app {
-
-/// A case of the source study: its run and the series it belongs to.
-struct SourceCase {
-  std::string series;  // e.g. "impact-theta"
-  CaseRun run;
-};
 
 /// study.md: the settings, the crack-metric definitions the runs used, and a table of every
 /// case (blocks, steps, dt cuts, wall time, cracks, crack length, fragments, first and
 /// through-going crack, peak force, energy-balance error, missed contacts, how it ended).
-std::string study_markdown(const std::vector<SourceCase>& cases, const std::vector<std::string>& overrides,
+std::string study_markdown(const std::vector<StudyCase>& cases, const std::vector<std::string>& overrides,
                            const std::vector<std::string>& figures);
 
 /// study.csv: case, series, run_dir (relative to `out`), state of its summary.json.
-std::string study_csv(const std::vector<SourceCase>& cases, const std::filesystem::path& out);
+std::string study_csv(const std::vector<StudyCase>& cases, const std::filesystem::path& out);
 
 }  // namespace ddafrac::app

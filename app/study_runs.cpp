@@ -1,0 +1,182 @@
+#include "study_runs.hpp"
+
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "commands.hpp"
+#include "ddafrac/common/whole_file.hpp"
+#include "figures.hpp"
+#include "option_checks.hpp"
+
+namespace ddafrac::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr const char* kStudyFile = "study.json";  // --set values and the running study's pid
+constexpr int kThreadsPerRun = 1;                 // runs go side by side on the cores
+
+/// Is the process alive (a study running in the directory)?
+bool alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
+
+json read_study_file(const fs::path& out) {
+  const auto text = file_text(out / kStudyFile);
+  return text ? json::parse(*text, nullptr, false) : json();
+}
+
+void write_study_file(const fs::path& out, const std::vector<std::string>& overrides, long pid) {
+  common::write_whole_text(out / kStudyFile, json{{"set", overrides}, {"pid", pid}}.dump(2) + "\n");
+}
+
+/// The --set values: those given, or else those the study in `out` was started with.
+std::vector<std::string> study_overrides(const StudyArguments& args, const json& study) {
+  if (!args.overrides.empty() || !study.is_object() || !study.contains("set")) return args.overrides;
+  return study["set"].get<std::vector<std::string>>();
+}
+
+/// One line of --status: done, running, failed or to do, from the case's run directory.
+std::string status_line(const StudyCase& study_case, bool study_running) {
+  CaseRun c = study_case.run;
+  const json s = read_summary(c.run_dir);
+  decide_start(c);
+  const auto reason = !s.is_discarded() && s.contains("exit") ? s["exit"].value("reason", "") : std::string();
+  const double wall = summary_wall(s).value_or(0.0);
+  const double t = !s.is_discarded() ? s.value("simulated_time", 0.0) : 0.0;
+  const double end = c.scene.analysis.end_time;
+  std::string state;
+  if (c.start == Start::Finished) {
+    state = "done";
+  } else if (reason.empty()) {
+    state = "to do";
+  } else if (reason == "running" && study_running) {
+    state = "running";
+  } else if (reason == "numerical_trouble" || reason == "write_failed") {
+    state = fmt::format("failed ({})", reason);
+  } else if (c.start == Start::FromCheckpoint) {
+    state = "to do (continues from its checkpoint)";
+  } else {
+    state = fmt::format("to do (from t = 0: {})",
+                        reason == "completed" ? "its scene changed since" : "stopped with no checkpoint");
+  }
+  constexpr double kMicroseconds = 1e6;
+  return fmt::format("{:<18} {:<14} {:>7.0f} / {:<7.0f} {:>9.1f}  {}\n", c.scene.name, study_case.series,
+                     t * kMicroseconds, end * kMicroseconds, wall, state);
+}
+
+void print_status(const StudyKind& kind, const StudyArguments& args) {
+  const fs::path out(args.out);
+  if (!fs::exists(out / kStudyFile))
+    throw CommandFailed(fmt::format("{} --status: {} holds no study (no {})", kind.command, out.string(), kStudyFile));
+  const json study = read_study_file(out);
+  const long pid = study.is_object() ? study.value("pid", 0L) : 0L;
+  const bool running = alive(pid);
+  const std::vector<StudyCase> cases = choose_cases(kind.load(study_overrides(args, study)), args.cases, kind.command);
+  fmt::print("{} in {}: {}\n", kind.command, out.string(),
+             running ? fmt::format("running (process {})", pid) : std::string("not running"));
+  fmt::print("{:<18} {:<14} {:>17} {:>9}  {}\n", "case", "series", "t / end (µs)", "wall (s)", "state");
+  for (const StudyCase& c : cases) fmt::print("{}", status_line(c, running));
+}
+
+void run_study(const StudyKind& kind, const StudyArguments& args) {
+  const fs::path out(args.out);
+  const json previous = read_study_file(out);
+  if (previous.is_object() && alive(previous.value("pid", 0L)) && previous.value("pid", 0L) != ::getpid())
+    throw CommandFailed(fmt::format("{}: a study is running in {} (process {}); see --status", kind.command,
+                                    out.string(), previous.value("pid", 0L)));
+  const std::vector<std::string> overrides = args.resume ? study_overrides(args, previous) : args.overrides;
+  std::vector<StudyCase> cases = choose_cases(kind.load(overrides), args.cases, kind.command);
+
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int parallel = args.parallel > 0 ? args.parallel : std::max(1, cores / kThreadsPerRun);
+  fmt::print("{}: {} cases, {} at a time, {} thread each, into {}{}\n", kind.command, cases.size(), parallel,
+             kThreadsPerRun, out.string(),
+             overrides.empty() ? std::string() : fmt::format(" (--set {})", fmt::join(overrides, " --set ")));
+  fs::create_directories(out);
+  write_study_file(out, overrides, ::getpid());
+  std::vector<CaseRun> runs;
+  for (StudyCase& c : cases) {
+    if (args.resume) decide_start(c.run);
+    runs.push_back(c.run);
+  }
+  // The tables after every case: an interrupted study leaves those of the cases done so far.
+  run_cases(runs, {kThreadsPerRun, parallel, args.checkpoint_every, overrides,
+                   [&] { kind.write_tables(cases, overrides, {}); }});
+  for (std::size_t k = 0; k < cases.size(); ++k) cases[k].run = runs[k];
+  kind.write_tables(cases, overrides, {});
+  std::fflush(stdout);  // before the plotting script prints to the same terminal
+  draw_figures({kind.figures_command, out.string()});
+  kind.write_tables(cases, overrides, figure_names(out));
+  write_study_file(out, overrides, 0);
+  fmt::print("wrote {}\n", (out / "study.md").string());
+
+  const auto failed = std::count_if(runs.begin(), runs.end(), [](const CaseRun& c) { return c.exit_code != 0; });
+  if (failed > 0) throw CommandFailed(fmt::format("{} of {} cases failed (see their run.log)", failed, runs.size()));
+}
+
+}  // namespace
+
+std::vector<StudyCase> choose_cases(std::vector<StudyCase> all, const std::vector<std::string>& names,
+                                    const std::string& command) {
+  if (names.empty()) return all;
+  std::vector<StudyCase> chosen;
+  for (const std::string& name : names) {
+    const auto it = std::find_if(all.begin(), all.end(), [&](const StudyCase& c) { return c.run.scene.name == name; });
+    if (it == all.end()) {
+      std::string list;
+      for (const StudyCase& c : all) list += (list.empty() ? "" : ", ") + c.run.scene.name;
+      throw CommandFailed(fmt::format("{}: --cases: no case named '{}'; the cases are: {}", command, name, list));
+    }
+    chosen.push_back(*it);
+  }
+  return chosen;
+}
+
+std::vector<std::string> figure_names(const fs::path& out) {
+  std::vector<std::string> names;
+  const fs::path figures = out / "figures";
+  if (!fs::exists(figures)) return names;
+  for (const auto& entry : fs::directory_iterator(figures))
+    if (entry.path().extension() == ".png" && entry.path().filename().string().front() != '.')
+      names.push_back(fs::relative(entry.path(), out).string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+void add_study_options(CLI::App& command, StudyArguments& args, const std::string& default_out,
+                       const std::string& set_help, std::function<StudyKind()> kind) {
+  args.out = default_out;
+  command.add_option("--out", args.out, "study directory")->capture_default_str();
+  auto* resume = command.add_flag("--resume", args.resume,
+                                  "keep the cases that finished with the scene they have now, continue stopped ones "
+                                  "from their checkpoints, run the rest (with the --set values the study began with)");
+  auto* status = command.add_flag(
+      "--status", args.status, "list the cases as done / running / failed / to do with their run times; run nothing");
+  status->excludes(resume);
+  command.add_option("--set", args.overrides, set_help)->type_name("KEY=VALUE");
+  command.add_option("--parallel", args.parallel, "runs at once (default: the cores)")
+      ->check(whole_number(1, kMaxParallelRuns))
+      ->excludes(status);
+  command.add_option("--cases", args.cases, "only these cases (comma-separated scene names)")->delimiter(',');
+  command
+      .add_option("--checkpoint-every", args.checkpoint_every,
+                  "wall seconds between the checkpoints of each run (default: that of ddafrac run)")
+      ->check(non_negative_number())
+      ->excludes(status);
+  command.callback([&args, kind] {
+    const StudyKind k = kind();
+    args.status ? print_status(k, args) : run_study(k, args);
+  });
+}
+
+}  // namespace ddafrac::app

@@ -1,0 +1,62 @@
+#pragma once
+// What the studies that run many cases share (`ddafrac study source`, `study sensitivity`):
+// their options, the study directory's study.json (the --set values it was started with and,
+// while it runs, its process id), --status, and the run itself (each case a `ddafrac run`
+// process through case_runs.hpp, the tables rewritten after every case, then the figures).
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "case_runs.hpp"
+
+namespace ddafrac::app {
+
+/// A case of a study: its run and the series (or family) it belongs to.
+struct StudyCase {
+  std::string series;  // e.g. "impact-theta"
+  CaseRun run;
+};
+
+struct StudyArguments {
+  std::string out;
+  bool resume = false;
+  bool status = false;
+  std::vector<std::string> overrides;
+  int parallel = 0;
+  std::vector<std::string> cases;  // scene names; empty: all
+  std::optional<double> checkpoint_every;
+};
+
+/// A study as the shared code sees it: its command name ("study source"), how to load its
+/// cases with given --set values, how to write its tables and which figures to draw.
+struct StudyKind {
+  std::string command;          // e.g. "study source", for messages
+  std::string figures_command;  // the plotting script's subcommand, e.g. "study-source"
+  std::function<std::vector<StudyCase>(const std::vector<std::string>& overrides)> load;
+  /// Writes the study's documents into `out` (called after every case and at the end, with the
+  /// figures drawn so far, relative to `out`).
+  std::function<void(const std::vector<StudyCase>& cases, const std::vector<std::string>& overrides,
+                     const std::vector<std::string>& figures)>
+      write_tables;
+};
+
+/// Adds --out (default `default_out`), --resume, --status, --set (its help: `set_help`),
+/// --parallel, --cases and --checkpoint-every, and a callback that prints the status or runs
+/// the study. `args` must outlive the command (the callback refers to it).
+void add_study_options(CLI::App& command, StudyArguments& args, const std::string& default_out,
+                       const std::string& set_help, std::function<StudyKind()> kind);
+
+/// Only the cases named in `names` (all when empty), in that order; throws CommandFailed
+/// listing the cases when a name is unknown.
+std::vector<StudyCase> choose_cases(std::vector<StudyCase> all, const std::vector<std::string>& names,
+                                    const std::string& command);
+
+/// The figures drawn into `out`/figures, relative to `out`, sorted.
+std::vector<std::string> figure_names(const std::filesystem::path& out);
+
+}  // namespace ddafrac::app
