@@ -154,8 +154,10 @@ void show_progress(const dda::Progress& p, bool tty) {
 }
 
 /// Warns when the longest step is not a small fraction of the shortest contact period: the
-/// blocks would rock and bounce on their contact springs rather than rest on them.
+/// blocks would rock and bounce on their contact springs rather than rest on them. Static mode
+/// sets the velocities to zero after every step: nothing oscillates, and nothing is warned.
 void warn_if_contacts_are_unresolved(const dda::Engine& engine) {
+  if (engine.scene().analysis.mode == scene::Mode::Static) return;
   const double dt_max = engine.scene().analysis.dt_max;
   const dda::ContactPeriod shortest = dda::shortest_contact_period(engine, dt_max);
   if (shortest.unresolved_blocks == 0) return;
