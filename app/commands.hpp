@@ -28,6 +28,7 @@ void register_sweep_command(CLI::App& app);      // sweep_command.cpp (many runs
 void register_study_command(CLI::App& app);      // study_command.cpp (`ddafrac study`, parent of the studies)
 void register_study_stability(CLI::App& study);  // study_stability.cpp (`ddafrac study stability`)
 void register_study_source(CLI::App& study);     // study_source.cpp (`ddafrac study source`)
+void register_study_sensitivity(CLI::App& study);  // study_sensitivity.cpp (`ddafrac study sensitivity`)
 #ifdef DDAFRAC_WITH_FEM
 void register_fem_command(CLI::App& app);          // fem_command.cpp   (deal.II reference)
 void register_verify_command(CLI::App& app);       // verify_command.cpp (DDA vs FEM vs analytic, PASS/FAIL)

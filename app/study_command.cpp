@@ -14,6 +14,7 @@ void register_study_command(CLI::App& app) {
   study->require_subcommand(1);
   register_study_stability(*study);  // study_stability.cpp
   register_study_source(*study);     // study_source.cpp
+  register_study_sensitivity(*study);  // study_sensitivity.cpp
 #ifdef DDAFRAC_WITH_FEM
   register_study_convergence(*study);  // study_convergence.cpp
   register_study_penalty(*study);      // study_penalty.cpp

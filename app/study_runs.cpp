@@ -46,7 +46,8 @@ std::vector<std::string> study_overrides(const StudyArguments& args, const json&
 }
 
 /// One line of --status: done, running, failed or to do, from the case's run directory.
-std::string status_line(const StudyCase& study_case, bool study_running) {
+std::string status_line(const StudyCase& study_case, bool study_running, std::size_t name_width,
+                        std::size_t series_width) {
   CaseRun c = study_case.run;
   const json s = read_summary(c.run_dir);
   decide_start(c);
@@ -70,8 +71,8 @@ std::string status_line(const StudyCase& study_case, bool study_running) {
                         reason == "completed" ? "its scene changed since" : "stopped with no checkpoint");
   }
   constexpr double kMicroseconds = 1e6;
-  return fmt::format("{:<18} {:<14} {:>7.0f} / {:<7.0f} {:>9.1f}  {}\n", c.scene.name, study_case.series,
-                     t * kMicroseconds, end * kMicroseconds, wall, state);
+  return fmt::format("{:<{}} {:<{}} {:>7.0f} / {:<7.0f} {:>9.1f}  {}\n", c.scene.name, name_width, study_case.series,
+                     series_width, t * kMicroseconds, end * kMicroseconds, wall, state);
 }
 
 void print_status(const StudyKind& kind, const StudyArguments& args) {
@@ -84,8 +85,15 @@ void print_status(const StudyKind& kind, const StudyArguments& args) {
   const std::vector<StudyCase> cases = choose_cases(kind.load(study_overrides(args, study)), args.cases, kind.command);
   fmt::print("{} in {}: {}\n", kind.command, out.string(),
              running ? fmt::format("running (process {})", pid) : std::string("not running"));
-  fmt::print("{:<18} {:<14} {:>17} {:>9}  {}\n", "case", "series", "t / end (µs)", "wall (s)", "state");
-  for (const StudyCase& c : cases) fmt::print("{}", status_line(c, running));
+  constexpr std::size_t kNameWidth = 18, kSeriesWidth = 14;  // at least; wider for longer names
+  std::size_t name_width = kNameWidth, series_width = kSeriesWidth;
+  for (const StudyCase& c : cases) {
+    name_width = std::max(name_width, c.run.scene.name.size());
+    series_width = std::max(series_width, c.series.size());
+  }
+  fmt::print("{:<{}} {:<{}} {:>17} {:>9}  {}\n", "case", name_width, "series", series_width, "t / end (µs)", "wall (s)",
+             "state");
+  for (const StudyCase& c : cases) fmt::print("{}", status_line(c, running, name_width, series_width));
 }
 
 void run_study(const StudyKind& kind, const StudyArguments& args) {

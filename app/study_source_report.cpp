@@ -91,6 +91,17 @@ std::string definitions(const std::vector<StudyCase>& cases) {
 
 }  // namespace
 
+std::string case_table(const std::vector<StudyCase>& cases) {
+  std::string md = "Crack metrics:\n" + definitions(cases) + "\n";
+  md +=
+      "| case | series | blocks | steps | dt cuts | wall (s) | t end (µs) | cracks tensile / shear | crack length (mm) "
+      "| fragments | largest fragment (%) | first crack (µs) | through crack (µs) | peak force (kN/m) "
+      "| largest energy-balance error (%) | missed contacts | exit |\n";
+  md += "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
+  for (const StudyCase& c : cases) md += table_row(c);
+  return md;
+}
+
 std::string study_markdown(const std::vector<StudyCase>& cases, const std::vector<std::string>& overrides,
                            const std::vector<std::string>& figures) {
   std::string md = "# The source study\n\n";
@@ -99,13 +110,7 @@ std::string study_markdown(const std::vector<StudyCase>& cases, const std::vecto
       "`summary.json`; a case not run yet shows dashes.\n\n",
       overrides.empty() ? std::string(" at full size")
                         : fmt::format(" with `--set {}`", fmt::join(overrides, " --set ")));
-  md += "Crack metrics:\n" + definitions(cases) + "\n";
-  md +=
-      "| case | series | blocks | steps | dt cuts | wall (s) | t end (µs) | cracks tensile / shear | crack length (mm) "
-      "| fragments | largest fragment (%) | first crack (µs) | through crack (µs) | peak force (kN/m) "
-      "| largest energy-balance error (%) | missed contacts | exit |\n";
-  md += "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
-  for (const StudyCase& c : cases) md += table_row(c);
+  md += case_table(cases);
   if (!figures.empty()) {
     md += "\n## Figures\n\n";
     for (const std::string& f : figures) md += fmt::format("![{}]({})\n\n", f, f);

@@ -6,6 +6,7 @@ ddafrac calls this after a run; it can also be run by hand to redraw or restyle 
     ddafrac_plots.py run RUN_DIR [--times T1,T2,...] [--crack-interval S]
     ddafrac_plots.py sweep TABLE.csv --out DIR
     ddafrac_plots.py study-source STUDY_DIR [--times T1,T2,...]   (study_source_plots.py)
+    ddafrac_plots.py study-sensitivity STUDY_DIR                  (study_sensitivity_plots.py)
 
 It reads only the files a run writes (history.csv, gauges.csv, cracks.csv, vtk/run.pvd and the
 snapshots it lists, summary.json) and writes PNG files into RUN_DIR/figures/, each whole
@@ -306,6 +307,9 @@ def main():
     import study_source_plots  # noqa: E402  (beside this script)
 
     study_source_plots.register(commands, sys.modules[__name__], save)
+    import study_sensitivity_plots  # noqa: E402  (beside this script)
+
+    study_sensitivity_plots.register(commands, sys.modules[__name__], save)
     args = parser.parse_args()
     args.draw(args)
 

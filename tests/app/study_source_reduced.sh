@@ -12,9 +12,9 @@
 #     and fragments.csv byte for byte (results do not depend on the thread count).
 # Usage: study_source_reduced.sh DDAFRAC WORK_DIR
 set -u
+source "$(dirname "${BASH_SOURCE[0]}")/study_checks.sh"
 exe=$1 work=$2
 rm -rf "$work" && mkdir -p "$work"
-fail() { echo "FAIL: $*"; exit 1; }
 study="$work/study"
 blocks=700         # the scenes with a slot mesh into no fewer than ~590 blocks; 600 misses the flattened disc's target
 end_time=6e-5      # s: 600 steps at dt_max = 1e-7 s
@@ -53,31 +53,14 @@ for c in $cases; do
   grep -q "^| $c |" "$study/study.md" || fail "study.md has no row for $c"
   grep -q "^$c .* done$" "$work/status_end.log" || fail "--status does not list $c as done at the end"
   run="$study/$c"
-  grep -q '"reason": "completed"' "$run/summary.json" || fail "$c did not complete"
-  awk -F, -v c="$c" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
-    { for (k in last) if ($col[k] + 0 < last[k]) { print "FAIL: " c ": " k " fell from " last[k] " to " $col[k]; exit 1 }
-      last["cracks_total"] = $col["cracks_total"]; last["cracks_tensile"] = $col["cracks_tensile"];
-      last["cracks_shear"] = $col["cracks_shear"] }' "$run/history.csv" || exit 1
-  awk -F, -v c="$c" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
-    { for (k in last) if ($col[k] + 0 < last[k]) { print "FAIL: " c ": fragments.csv " k " fell"; exit 1 }
-      last["crack_length_tensile"] = $col["crack_length_tensile"]; last["crack_length_shear"] = $col["crack_length_shear"];
-      last["fragments"] = $col["fragments"] }' "$run/fragments.csv" || exit 1
-  error=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["energy"]["largest_balance_error"])' "$run/summary.json")
-  python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) <= 0.01 else 1)' "$error" ||
-    fail "$c: largest energy-balance error $error is above 1%"
+  check_run "$c" "$run"
   [ "$(tail -n 1 "$run/history.csv" | cut -d, -f"$(head -n 1 "$run/history.csv" | tr , '\n' | grep -n '^cracks_total$' | cut -d: -f1)")" -gt 0 ] &&
     cracked=$((cracked + 1))
-  echo "$c: $(python3 -c 'import json,sys; s=json.load(open(sys.argv[1])); m=s["crack_metrics"]; print(s["cracks"]["tensile"], "tensile,", s["cracks"]["shear"], "shear,", round(1e3*(m["crack_length_tensile"]+m["crack_length_shear"]),2), "mm,", m["fragments"], "fragments, energy error", s["energy"]["largest_balance_error"], ", wall", round(s["wall_time"]["total"],1), "s")' "$run/summary.json")"
 done
 [ $cracked -gt 0 ] || fail "no case cracked: the checks of crack counts over time saw nothing"
 echo "$cracked of 22 cases cracked"
 
 most=$(for c in $cases; do echo "$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["cracks"]["total"])' "$study/$c/summary.json") $c"; done | sort -n | tail -n 1 | cut -d' ' -f2)
 scene=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["scene"]["source"])' "$study/$most/summary.json")
-"$exe" run "$scene" --out "$work/two_threads" --threads 2 --keep-threads --no-figures "${set_args[@]}" > "$work/two_threads.log" 2>&1 ||
-  { cat "$work/two_threads.log"; fail "$most on 2 threads failed"; }
-for f in history.csv cracks.csv fragments.csv; do
-  cmp -s "$study/$most/$f" "$work/two_threads/$f" || fail "$most/$f differs between 1 and 2 threads"
-done
-echo "$most on 1 and 2 threads: history.csv, cracks.csv, fragments.csv identical"
+check_same_on_two_threads "$most" "$study/$most" "$exe" "$work/two_threads" "$scene" "${set_args[@]}"
 echo "PASS"

@@ -1,0 +1,421 @@
+"""Figures and analysis of `ddafrac study sensitivity` (registered by register() as a subcommand
+of ddafrac_plots.py):
+
+    ddafrac_plots.py study-sensitivity STUDY_DIR
+
+reads STUDY_DIR/study.csv (case, series = its families joined by "+", run_dir) and each run's
+summary.json, scene.resolved.toml, history.csv, gauges.csv and loading.csv, and writes
+
+    analysis.md                 per family: a table of the crack measures against the varied
+                                parameter, the observed convergence orders (mesh), the indirect
+                                tensile strength of every Brazilian run, and computed verdicts
+    figures/mesh.png            case 4's crack measures against its block count
+    figures/penalty.png         case 4's crack measures and gauge σ1 peaks against kn/E
+    figures/timestep.png        case 4's crack measures against dt_max
+    figures/rate.png            the flattened disc's force-displacement curves per platen speed,
+                                and the peak force against speed
+    figures/penalty_theta.png   the θ series' crack counts at kn = 10·E
+
+Only runs that completed are analysed; the others are listed as missing. Every PNG and
+analysis.md are written whole (temporary name, then rename).
+"""
+
+import json
+import math
+import os
+import tomllib
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+MICROSECONDS = 1e6  # µs per s
+MILLIMETRES = 1e3  # mm per m
+KILONEWTONS = 1e-3  # kN per N
+MEGAPASCAL = 1e-6  # MPa per Pa
+PERCENT = 100.0
+LOADED_BODY = "top_platen"  # the prescribed platen of the Brazilian scenes
+CENTRE_GAUGE = "centre"  # the Brazilian scenes' gauge at the disc's centre
+GAUGE_CASE = "case04"  # the impact case the families vary
+# A measure whose relative change between meshes is at most this is taken as unchanged.
+UNCHANGED = 0.01
+# A loading rate is quasi-static when its peak force is within this of the static run's.
+QUASI_STATIC_TOLERANCE = 0.02
+# The kinetic/strain ratio is read from this fraction of the time to the peak on (before it,
+# the strain energy is still near zero and the ratio means nothing).
+RATIO_START_FRACTION = 0.1
+# Case 4's crack measures: (label, function of the run record -> value or None).
+MEASURES = (
+    ("cracks tensile", lambda r: r["cracks"].get("tensile")),
+    ("cracks shear", lambda r: r["cracks"].get("shear")),
+    ("crack length (mm)", lambda r: r["length"] * MILLIMETRES if r["length"] is not None else None),
+    ("fragments", lambda r: r["metrics"].get("fragments")),
+    ("largest fragment (%)", lambda r: r["largest"] * PERCENT if r["largest"] is not None else None),
+    ("first crack (µs)", lambda r: scaled(r["metrics"].get("first_crack_time"), MICROSECONDS)),
+    ("through crack (µs)", lambda r: scaled(r["metrics"].get("first_through_crack_time"), MICROSECONDS)),
+)
+
+
+def scaled(value, factor):
+    return value * factor if value is not None else None
+
+
+def cell(value, form="{:.3g}"):
+    return "–" if value is None else form.format(value)
+
+
+def flattened_disc_factor(flat_angle_degrees):
+    """k of σt = k·2P/(πD) for a flattened disc whose flats span the central angle 2α (Wang et
+    al. 2004, Int. J. Rock Mech. Min. Sci. 41, 245–253): k = (2cos³α + cosα + sinα/α)² /
+    (8(cosα + sinα/α)) · α/sinα; k → 1 as the flats vanish (the Brazilian formula)."""
+    a = math.radians(flat_angle_degrees) / 2.0
+    if a == 0.0:
+        return 1.0
+    s = math.sin(a) / a
+    return (2.0 * math.cos(a) ** 3 + math.cos(a) + s) ** 2 / (8.0 * (math.cos(a) + s)) / s
+
+
+def read_run(h, case, families, run_dir):
+    """What the analysis needs of one completed run, or None."""
+    summary_path = os.path.join(run_dir, "summary.json")
+    scene_path = os.path.join(run_dir, "scene.resolved.toml")
+    if not (os.path.exists(summary_path) and os.path.exists(scene_path)):
+        return None
+    with open(summary_path) as handle:
+        summary = json.load(handle)
+    if summary.get("exit", {}).get("reason") != "completed":
+        return None
+    with open(scene_path, "rb") as handle:
+        scene = tomllib.load(handle)
+    metrics = summary.get("crack_metrics", {})
+    bodies = metrics.get("bodies", [])
+    tensile, shear = metrics.get("crack_length_tensile"), metrics.get("crack_length_shear")
+    disc = scene.get("bodies", {}).get("disc", {})
+    joints = scene.get("joints", {}).get(disc.get("virtual_joints"), {})
+    material = scene.get("materials", {}).get(disc.get("material"), {})
+    return {
+        "case": case,
+        "families": families,
+        "dir": run_dir,
+        "scene": scene,
+        "summary": summary,
+        "blocks": summary["scene"]["blocks"],
+        "dt_max": summary["scene"]["dt_max"],
+        "mode": summary["scene"]["mode"],
+        "young": material.get("young"),
+        "kn": joints.get("normal_stiffness", scene.get("analysis", {}).get("penalty")),
+        "sigma_t": joints.get("tensile_strength"),
+        "cracks": summary.get("cracks", {}),
+        "metrics": metrics,
+        "length": tensile + shear if tensile is not None and shear is not None else None,
+        "largest": bodies[0].get("largest_fragment_fraction") if len(bodies) == 1 else None,
+        "wall": summary.get("wall_time", {}).get("total"),
+        "balance": summary.get("energy", {}).get("largest_balance_error"),
+    }
+
+
+def family_runs(h, study_dir):
+    """{family: [run]} (completed runs) and the names of the cases not completed."""
+    table = h.read_columns(os.path.join(study_dir, "study.csv"))
+    if not table:
+        h.fail(f"{study_dir}/study.csv: no cases")
+    runs, missing = {}, []
+    for case, series, run_dir in zip(table["case"], table["series"], table["run_dir"]):
+        families = series.split("+")
+        run = read_run(h, case, families, os.path.join(study_dir, run_dir))
+        if run is None:
+            missing.append(case)
+            continue
+        for family in families:
+            runs.setdefault(family, []).append(run)
+    return runs, missing
+
+
+def measure_table(runs, parameter, value, form="{:.3g}"):
+    """A markdown table: the parameter, every crack measure, the energy balance, the wall time."""
+    labels = [label for label, _ in MEASURES]
+    md = f"| case | {parameter} | " + " | ".join(labels) + " | balance error (%) | wall (s) |\n"
+    md += "|---|--:|" + "--:|" * len(labels) + "--:|--:|\n"
+    for r in runs:
+        values = [cell(f(r)) for _, f in MEASURES]
+        md += (f"| {r['case']} | {cell(value(r), form)} | " + " | ".join(values)
+               + f" | {cell(scaled(r['balance'], PERCENT), '{:.2g}')} | {cell(r['wall'], '{:.0f}')} |\n")
+    return md
+
+
+def observed_orders(runs):
+    """Per measure, the relative change between successive meshes and, from the last three, the
+    observed order p in the block size h ∝ blocks^(-1/2): p = ln(|f2 - f1| / |f3 - f2|) / ln(h1/h2)."""
+    md = "| measure | relative change between successive meshes | observed order p | verdict |\n|---|---|--:|---|\n"
+    for label, f in MEASURES:
+        values = [f(r) for r in runs]
+        if any(v is None for v in values) or len(values) < 2:
+            md += f"| {label} | – | – | not measured in every run |\n"
+            continue
+        changes = [abs(b - a) / max(abs(b), 1e-30) for a, b in zip(values, values[1:])]
+        order, verdict = None, "two meshes only"
+        if len(values) >= 3:
+            d1, d2 = abs(values[-2] - values[-3]), abs(values[-1] - values[-2])
+            ratio = math.sqrt(runs[-2]["blocks"] / runs[-3]["blocks"])
+            if max(changes[-2:]) <= UNCHANGED:
+                verdict = f"unchanged (within {UNCHANGED * PERCENT:g}%)"
+            elif changes[-1] <= UNCHANGED:
+                verdict = f"settled: the last change within {UNCHANGED * PERCENT:g}%"
+            elif d2 < d1:
+                order = math.log(d1 / d2) / math.log(ratio)
+                verdict = "converging"
+            else:
+                verdict = "not converging (the last change is not smaller)"
+        md += (f"| {label} | " + ", ".join(f"{c * PERCENT:.1f}%" for c in changes)
+               + f" | {cell(order, '{:.2f}')} | {verdict} |\n")
+    return md
+
+
+def peak_force(run):
+    peak = run["summary"].get("loading", {}).get("peak", {}).get(LOADED_BODY)
+    return (peak["peak_abs_force_y"], peak["t"], abs(peak["displacement_y"])) if peak else None
+
+
+def indirect_strength(run):
+    """(σt from the peak force, k) for a Brazilian run, or None."""
+    peak = peak_force(run)
+    geometry = run["scene"].get("geometry", {})
+    if peak is None or "diameter" not in geometry:
+        return None
+    k = flattened_disc_factor(geometry.get("flat_angle", 0.0))
+    return k * 2.0 * peak[0] / (math.pi * geometry["diameter"]), k
+
+
+def kinetic_ratio_to_peak(h, run):
+    """Median and largest kinetic/strain energy ratio of the disc up to the peak force."""
+    peak = peak_force(run)
+    history = os.path.join(run["dir"], "history.csv")
+    if peak is None or not os.path.exists(history):
+        return None, None
+    columns = h.read_columns(history)
+    t, ratio = h.numbers(columns, "t"), h.numbers(columns, "kinetic_strain_ratio")
+    window = (t >= RATIO_START_FRACTION * peak[1]) & (t <= peak[1])
+    if not window.any():
+        return None, None
+    return float(np.median(ratio[window])), float(ratio[window].max())
+
+
+def platen_speed(run):
+    velocity = run["scene"].get("bodies", {}).get(LOADED_BODY, {}).get("prescribed_velocity", [0.0, 0.0])
+    return abs(velocity[1])
+
+
+def gauge_peaks(h, run):
+    """{gauge: largest σ1 (Pa)} of a run's gauges.csv."""
+    path = os.path.join(run["dir"], "gauges.csv")
+    if not os.path.exists(path):
+        return {}
+    gauges = h.read_columns(path)
+    sigma1 = h.numbers(gauges, "sigma1")
+    names = np.array(gauges["gauge"])
+    return {name: float(sigma1[names == name].max()) for name in dict.fromkeys(gauges["gauge"])}
+
+
+def draw_measures(runs, x, xlabel, logx, title, path, save):
+    figure, axes = plt.subplots(2, 4, figsize=(15, 7))
+    xs = [x(r) for r in runs]
+    for axis, (label, f) in zip(axes.flat, MEASURES):
+        ys = [f(r) for r in runs]
+        points = [(a, b) for a, b in zip(xs, ys) if b is not None]
+        if points:
+            axis.plot(*zip(*points), "o-")
+        axis.set_title(label, fontsize="medium")
+        axis.set_xlabel(xlabel)
+        if logx:
+            axis.set_xscale("log")
+        axis.grid(alpha=0.3)
+    axes.flat[-1].axis("off")
+    figure.suptitle(title)
+    save(figure, path)
+
+
+def mesh_section(h, runs, figures, save):
+    impact = sorted([r for r in runs if r["case"].startswith(GAUGE_CASE)], key=lambda r: r["blocks"])
+    discs = sorted([r for r in runs if not r["case"].startswith(GAUGE_CASE)], key=lambda r: r["blocks"])
+    md = "## Mesh\n\n"
+    if impact:
+        md += "Case 4:\n\n" + measure_table(impact, "blocks", lambda r: r["blocks"], "{:.0f}") + "\n"
+        md += observed_orders(impact) + "\n"
+        draw_measures(impact, lambda r: r["blocks"], "blocks", True, "case 4 against its mesh",
+                      os.path.join(figures, "mesh.png"), save)
+    if discs:
+        md += "Flattened disc:\n\n" + brazilian_table(h, discs, "blocks", lambda r: r["blocks"], "{:.0f}") + "\n"
+        forces = [peak_force(r)[0] for r in discs if peak_force(r)]
+        if len(forces) >= 2:
+            md += (f"Peak force from the coarsest to the finest mesh: {forces[0] * KILONEWTONS:.1f} → "
+                   f"{forces[-1] * KILONEWTONS:.1f} kN/m ({(forces[-1] / forces[0] - 1.0) * PERCENT:+.1f}%).\n\n")
+    return md
+
+
+def first_crack(h, run):
+    """(type, distance from the disc's centre / its radius, time) of a run's first crack, or None."""
+    path = os.path.join(run["dir"], "cracks.csv")
+    cracks = h.read_columns(path) if os.path.exists(path) else {}
+    diameter = run["scene"].get("geometry", {}).get("diameter")
+    if not cracks or not diameter:
+        return None
+    x, y = float(cracks["x"][0]), float(cracks["y"][0])
+    return cracks["type"][0], math.hypot(x, y) / (diameter / 2.0), float(cracks["t"][0])
+
+
+def centre_sigma1_to_peak(h, run):
+    """The largest σ1 (Pa) at the gauge named "centre" up to the peak force, or None."""
+    peak = peak_force(run)
+    path = os.path.join(run["dir"], "gauges.csv")
+    if peak is None or not os.path.exists(path):
+        return None
+    gauges = h.read_columns(path)
+    mask = (np.array(gauges["gauge"]) == CENTRE_GAUGE) & (h.numbers(gauges, "t") <= peak[1])
+    return float(h.numbers(gauges, "sigma1")[mask].max()) if mask.any() else None
+
+
+def brazilian_table(h, runs, parameter, value, form="{:.3g}"):
+    md = (f"| case | {parameter} | peak force (kN/m) | platen travel at peak (mm) | k | σt indirect (MPa) "
+          "| centre σ1 to the peak (MPa) | σt of the joints (MPa) | ratio | first crack: kind, r/R, µs "
+          "| kinetic/strain to the peak: median / max (%) | cracks T / S "
+          "| crack length (mm) | wall (s) |\n|---|--:|--:|--:|--:|--:|--:|--:|--:|---|--:|--:|--:|--:|\n")
+    for r in runs:
+        peak, strength, first = peak_force(r), indirect_strength(r), first_crack(h, r)
+        median, largest = kinetic_ratio_to_peak(h, r)
+        first_text = f"{first[0]}, {first[1]:.2f}, {first[2] * MICROSECONDS:.0f}" if first else "–"
+        md += (f"| {r['case']} | {cell(value(r), form)} | {cell(scaled(peak[0], KILONEWTONS) if peak else None, '{:.1f}')}"
+               f" | {cell(scaled(peak[2], MILLIMETRES) if peak else None, '{:.3f}')}"
+               f" | {cell(strength[1] if strength else None, '{:.4f}')}"
+               f" | {cell(scaled(strength[0], MEGAPASCAL) if strength else None, '{:.2f}')}"
+               f" | {cell(scaled(centre_sigma1_to_peak(h, r), MEGAPASCAL), '{:.2f}')}"
+               f" | {cell(scaled(r['sigma_t'], MEGAPASCAL), '{:.2f}')}"
+               f" | {cell(strength[0] / r['sigma_t'] if strength and r['sigma_t'] else None, '{:.2f}')}"
+               f" | {first_text}"
+               f" | {cell(scaled(median, PERCENT), '{:.2g}')} / {cell(scaled(largest, PERCENT), '{:.2g}')}"
+               f" | {cell(r['cracks'].get('tensile'), '{:.0f}')} / {cell(r['cracks'].get('shear'), '{:.0f}')}"
+               f" | {cell(scaled(r['length'], MILLIMETRES), '{:.1f}')} | {cell(r['wall'], '{:.0f}')} |\n")
+    return md
+
+
+def penalty_section(h, runs, figures, save):
+    runs = sorted(runs, key=lambda r: r["kn"] / r["young"])
+    md = "## Joint stiffness (penalty)\n\n" + measure_table(runs, "kn/E", lambda r: r["kn"] / r["young"]) + "\n"
+    md += "dt_max of each run (the stiffer joints need shorter steps to resolve the contact period): " + ", ".join(
+        f"{r['case']} {r['dt_max']:g} s" for r in runs) + "\n\n"
+    peaks = [gauge_peaks(h, r) for r in runs]
+    names = list(dict.fromkeys(n for p in peaks for n in p))
+    if names:
+        md += "Peak σ1 at the gauges (MPa):\n\n| case | kn/E | " + " | ".join(names) + " |\n"
+        md += "|---|--:|" + "--:|" * len(names) + "\n"
+        for r, p in zip(runs, peaks):
+            md += (f"| {r['case']} | {r['kn'] / r['young']:.3g} | "
+                   + " | ".join(cell(scaled(p.get(n), MEGAPASCAL), "{:.1f}") for n in names) + " |\n")
+        md += "\n"
+    draw_measures(runs, lambda r: r["kn"] / r["young"], "kn / E", True, "case 4 against the joints' stiffness",
+                  os.path.join(figures, "penalty.png"), save)
+    return md
+
+
+def timestep_section(runs, figures, save):
+    runs = sorted(runs, key=lambda r: -r["dt_max"])
+    md = "## Time step\n\n" + measure_table(runs, "dt_max (s)", lambda r: r["dt_max"]) + "\n"
+    draw_measures(runs, lambda r: r["dt_max"], "dt_max (s)", True, "case 4 against the time step",
+                  os.path.join(figures, "timestep.png"), save)
+    return md
+
+
+def rate_section(h, runs, figures, save):
+    static = [r for r in runs if r["mode"] == "static"]
+    dynamic = sorted([r for r in runs if r["mode"] != "static"], key=lambda r: -platen_speed(r))
+    md = "## Loading rate (flattened disc)\n\n"
+    md += brazilian_table(h, dynamic + static, "platen speed (m/s)",
+                          lambda r: platen_speed(r) if r["mode"] != "static" else None) + "\n"
+    if static and peak_force(static[0]):
+        reference = peak_force(static[0])[0]
+        within = [platen_speed(r) for r in dynamic
+                  if peak_force(r) and abs(peak_force(r)[0] / reference - 1.0) <= QUASI_STATIC_TOLERANCE]
+        md += "Peak force against the static run's: " + ", ".join(
+            f"{platen_speed(r):g} m/s {(peak_force(r)[0] / reference - 1.0) * PERCENT:+.1f}%"
+            for r in dynamic if peak_force(r)) + ".\n"
+        md += (f"Verdict: quasi-static to within {QUASI_STATIC_TOLERANCE * PERCENT:g}% of the static peak at "
+               + (f"{max(within):g} m/s and slower.\n\n" if within else "none of the speeds run.\n\n"))
+    figure, (curves, peaks) = plt.subplots(1, 2, figsize=(13, 5))
+    for r in dynamic + static:
+        loading = h.read_columns(os.path.join(r["dir"], "loading.csv"))
+        mask = np.array([b == LOADED_BODY for b in loading["body"]])
+        label = "static" if r["mode"] == "static" else f"{platen_speed(r):g} m/s"
+        curves.plot(np.abs(h.numbers(loading, "displacement_y")[mask]) * MILLIMETRES,
+                    np.abs(h.numbers(loading, "force_y")[mask]) * KILONEWTONS, label=label)
+    curves.set_xlabel("platen travel (mm)")
+    curves.set_ylabel("force (kN/m)")
+    curves.legend()
+    curves.grid(alpha=0.3)
+    points = [(platen_speed(r), peak_force(r)[0] * KILONEWTONS) for r in dynamic if peak_force(r)]
+    if points:
+        peaks.plot(*zip(*points), "o-", label="dynamic")
+    if static and peak_force(static[0]):
+        peaks.axhline(peak_force(static[0])[0] * KILONEWTONS, color="k", linestyle="--", label="static")
+    peaks.set_xscale("log")
+    peaks.set_xlabel("platen speed (m/s)")
+    peaks.set_ylabel("peak force (kN/m)")
+    peaks.legend()
+    peaks.grid(alpha=0.3)
+    figure.suptitle("flattened disc against the loading rate")
+    save(figure, os.path.join(figures, "rate.png"))
+    return md
+
+
+def theta_section(runs, figures, save):
+    runs = sorted(runs, key=lambda r: r["scene"].get("geometry", {}).get("joint_angle", 0.0))
+    angle = lambda r: r["scene"].get("geometry", {}).get("joint_angle")  # noqa: E731
+    md = "## The θ series at kn = 10·E\n\n" + measure_table(runs, "θ (°)", angle) + "\n"
+    figure, axes = plt.subplots(figsize=(7, 4.5))
+    for label, key in (("tensile", "tensile"), ("shear", "shear")):
+        axes.plot([angle(r) for r in runs], [r["cracks"].get(key) for r in runs], "o-", label=label)
+    axes.set_xlabel("joint angle θ (°)")
+    axes.set_ylabel("cracks at the end")
+    axes.legend()
+    axes.grid(alpha=0.3)
+    save(figure, os.path.join(figures, "penalty_theta.png"))
+    return md
+
+
+def write_whole(path, text):
+    temporary = os.path.join(os.path.dirname(path), "." + os.path.basename(path) + ".partial")
+    with open(temporary, "w") as handle:
+        handle.write(text)
+    os.replace(temporary, path)
+    print(f"wrote {path}")
+
+
+def draw_study(args, h, save):
+    figures = os.path.join(args.study_dir, "figures")
+    os.makedirs(figures, exist_ok=True)
+    runs, missing = family_runs(h, args.study_dir)
+    md = "# Sensitivity study: analysis\n\n"
+    md += ("Read from the completed runs' summary.json, history.csv, gauges.csv and loading.csv by "
+           "`ddafrac_plots.py study-sensitivity`. Indirect tensile strength: σt = k·2P/(πD) per unit thickness, "
+           "k the flattened-disc factor of Wang et al. (2004, Int. J. Rock Mech. Min. Sci. 41, 245–253) for the "
+           "flats' central angle (k = 1: the Brazilian formula).\n\n")
+    if missing:
+        md += "Not completed (left out): " + ", ".join(missing) + ".\n\n"
+    if "mesh" in runs:
+        md += mesh_section(h, runs["mesh"], figures, save)
+    if "penalty" in runs:
+        md += penalty_section(h, runs["penalty"], figures, save)
+    if "timestep" in runs:
+        md += timestep_section(runs["timestep"], figures, save)
+    if "rate" in runs:
+        md += rate_section(h, runs["rate"], figures, save)
+    if "penalty-theta" in runs:
+        md += theta_section(runs["penalty-theta"], figures, save)
+    write_whole(os.path.join(args.study_dir, "analysis.md"), md)
+
+
+def register(commands, helpers, save):
+    """helpers: the ddafrac_plots module (read_columns, numbers, fail)."""
+    study = commands.add_parser("study-sensitivity", help="figures and analysis of ddafrac study sensitivity")
+    study.add_argument("study_dir")
+    study.set_defaults(draw=lambda args: draw_study(args, helpers, save))

@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# `ddafrac study sensitivity` at a strongly reduced size: case 4's reference mesh at 1400 blocks
+# (--blocks), to 400 µs (past its first cracks, at about 255 µs), and one member of each impact
+# family besides the reference: the half-size mesh, every contact and joint at kn = E, the half time step.
+# Asserts what must hold whatever the mesh:
+#   - every case completed; crack counts, crack lengths and fragments never fall; the energy
+#     balance holds within 1% (study_checks.sh), and within the looser bound below for the
+#     stiff case;
+#   - the total crack length of the two meshes agrees within the band below;
+#   - the stiff-joint case got a dt_max that resolves its contact period (shorter than the
+#     scene's, and its run did not warn), as the family promises;
+#   - the half time step gives the reference's crack length within the same band;
+#   - study.md has a row per case, analysis.md a section per family and the figures exist;
+#   - the reference case (it cracks; the stiff one cracks more but costs 4× as much) gives the
+#     same files on 2 threads.
+# Then the flattened-disc factor of the analysis (Wang et al. 2004) against the FEM: the centre
+# σxx of the FEM's flattened disc under a flat load P, over 2P/(πD), within the stated tolerance.
+# Usage: study_sensitivity_reduced.sh DDAFRAC WORK_DIR
+set -u
+source "$(dirname "${BASH_SOURCE[0]}")/study_checks.sh"
+exe=$1 work=$2
+rm -rf "$work" && mkdir -p "$work"
+study="$work/study"
+end_time=4e-4   # s: 4000 steps at the scene's dt_max = 1e-7 s
+# Total crack length, 700 against 1400 blocks. The first cracks form at the slot's tips, where
+# both meshes are refined alike: to 1800 µs the two lengths differ by 0.03% (5.66 mm), the counts
+# by one crack. Band: a factor of 1.5, so that a change that makes the cracks depend on the
+# mesh far from the tips is seen, while one more or fewer crack (about 0.6 mm each) is not.
+length_band=1.5
+# The FEM's centre σxx over 2P/(πD) is 0.978 for the study's 10° flats; the formula gives 0.990
+# (it maps the flats onto arcs): 1.2% apart. Tolerance 2%.
+factor_tolerance=0.02
+# The stiff case (kn = E) shatters: ~200 cracks by 400 µs, against 8 at the study's kn. Its
+# balance error reaches 3.6% during the burst (75-150 µs), in jumps at steps where a broken
+# joint's springs are booked as lost: a leak of the ledger in mass fragmentation, open in
+# docs/results/sensitivity.md. Bound 5% until it is found, so that a worse leak still fails
+# (stiffening the virtual joints alone gave 2400%).
+stiff_balance_tolerance=0.05
+set_args=(--set "analysis.end_time=$end_time")
+cases=case04-700,case04-1400,case04-1400-kn1E,case04-1400-dt5e-08
+
+"$exe" study sensitivity --out "$study" --blocks 1400 --family mesh,penalty,timestep --cases "$cases" \
+  "${set_args[@]}" > "$work/study.log" 2>&1
+code=$?
+cat "$work/study.log"
+[ $code = 0 ] || fail "the study failed (exit status $code)"
+
+for c in ${cases//,/ }; do
+  grep -q "^| $c |" "$study/study.md" || fail "study.md has no row for $c"
+  if [ "$c" = case04-1400-kn1E ]; then check_run "$c" "$study/$c" "$stiff_balance_tolerance"; else check_run "$c" "$study/$c"; fi
+done
+reference=case04-1400
+[ "$(summary_value "$study/$reference" 's["cracks"]["total"]')" -gt 0 ] ||
+  fail "$reference did not crack: the checks of crack counts over time and threads see nothing"
+
+length() { summary_value "$1" 's["crack_metrics"]["crack_length_tensile"] + s["crack_metrics"]["crack_length_shear"]'; }
+within_band() {
+  python3 -c 'import sys; a, b, band = map(float, sys.argv[1:]); sys.exit(0 if a > 0 and b > 0 and max(a, b) / min(a, b) <= band else 1)' "$@"
+}
+coarse=$(length "$study/case04-700") fine=$(length "$study/case04-1400") short=$(length "$study/case04-1400-dt5e-08")
+within_band "$coarse" "$fine" "$length_band" || fail "crack length $coarse m (700 blocks) against $fine m (1400 blocks): outside a factor of $length_band"
+within_band "$short" "$fine" "$length_band" || fail "crack length $short m (dt_max 5e-8 s) against $fine m (1e-7 s): outside a factor of $length_band"
+echo "crack length: $coarse m at 700 blocks, $fine m at 1400 blocks, $short m at half the time step (band: a factor of $length_band)"
+
+stiff_dt=$(summary_value "$study/case04-1400-kn1E" 's["scene"]["dt_max"]')
+python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) < 1e-7 else 1)' "$stiff_dt" || fail "the kn = E case kept dt_max = $stiff_dt s"
+grep -q "steps per period" "$study/case04-1400-kn1E/run.log" && fail "the kn = E case was warned that its dt_max does not resolve its contacts"
+echo "kn = E: dt_max = $stiff_dt s, no contact-period warning"
+
+for section in "## Mesh" "## Joint stiffness" "## Time step"; do
+  grep -q "^$section" "$study/analysis.md" || fail "analysis.md has no section '$section'"
+done
+for figure in mesh penalty timestep; do
+  [ -s "$study/figures/$figure.png" ] || fail "no figures/$figure.png"
+done
+
+check_same_on_two_threads "$reference" "$study/$reference" "$exe" "$work/two_threads" "$study/scenes/$reference.toml" "${set_args[@]}"
+
+# The flattened-disc factor against the FEM reference of the same disc (its geometry as a run
+# of the scene resolves it: one step).
+flattened="$(dirname "${BASH_SOURCE[0]}")/../../scenes/verify/flattened_static.toml"
+"$exe" verify "$flattened" --out "$work/verify" --no-figures > "$work/verify.log" 2>&1 ||
+  { cat "$work/verify.log"; fail "verify flattened_static failed"; }
+"$exe" run "$flattened" --out "$work/geometry" --max-steps 1 --no-vtk --no-figures > "$work/geometry.log" 2>&1 ||
+  { cat "$work/geometry.log"; fail "one step of flattened_static failed"; }
+"${DDAFRAC_PYTHON:-/usr/bin/python3}" - "$work" "$(dirname "${BASH_SOURCE[0]}")/../../plots" "$factor_tolerance" <<'PY' || fail "flattened-disc factor"
+import json, math, sys, tomllib
+work, plots, tolerance = sys.argv[1], sys.argv[2], float(sys.argv[3])
+sys.path.insert(0, plots)
+from study_sensitivity_plots import flattened_disc_factor
+c = json.load(open(f"{work}/verify/comparison.json"))
+geometry = tomllib.load(open(f"{work}/geometry/scene.resolved.toml", "rb"))["geometry"]
+fem = c["centre"]["fem"][0] / (2.0 * c["load"] / (math.pi * geometry["diameter"]))
+formula = flattened_disc_factor(geometry["flat_angle"])
+print(f"flattened-disc factor: FEM {fem:.4f}, formula {formula:.4f} ({(formula / fem - 1) * 100:+.2f}%)")
+sys.exit(0 if abs(formula / fem - 1.0) <= tolerance else 1)
+PY
+echo "PASS"
