@@ -15,8 +15,8 @@
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <thread>
 
+#include "case_ranks.hpp"
 #include "case_runs.hpp"
 #include "commands.hpp"
 #include "ddafrac/common/whole_file.hpp"
@@ -166,21 +166,25 @@ std::vector<std::string> figure_names(const fs::path& out) {
 }
 
 void run_study(const SourceArguments& args) {
+  const CaseRanks ranks;  // under mpirun or srun, the cases are spread over the ranks
   const fs::path out(args.out);
   const json previous = read_study_file(out);
-  if (previous.is_object() && alive(previous.value("pid", 0L)) && previous.value("pid", 0L) != ::getpid())
+  if (ranks.is_root() && previous.is_object() && alive(previous.value("pid", 0L)) &&
+      previous.value("pid", 0L) != ::getpid())
     throw CommandFailed(fmt::format("study source: a study is running in {} (process {}); see --status", out.string(),
                                     previous.value("pid", 0L)));
   const std::vector<std::string> overrides = args.resume ? study_overrides(args, previous) : args.overrides;
   std::vector<SourceCase> cases = load_study(args, overrides, out);
 
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int parallel = args.parallel > 0 ? args.parallel : std::max(1, cores / kThreadsPerRun);
-  fmt::print("study source: {} cases, {} at a time, {} thread each, into {}{}\n", cases.size(), parallel,
-             kThreadsPerRun, out.string(),
-             overrides.empty() ? std::string() : fmt::format(" (--set {})", fmt::join(overrides, " --set ")));
-  fs::create_directories(out);
-  write_study_file(out, overrides, ::getpid());
+  const int parallel = args.parallel > 0 ? args.parallel : std::max(1, ranks.cores_for_runs() / kThreadsPerRun);
+  if (ranks.is_root()) {
+    fmt::print("study source: {} cases, {} at a time{}, {} thread each, into {}{}\n", cases.size(), parallel,
+               ranks.size() > 1 ? fmt::format(" on each of {} ranks", ranks.size()) : std::string(), kThreadsPerRun,
+               out.string(),
+               overrides.empty() ? std::string() : fmt::format(" (--set {})", fmt::join(overrides, " --set ")));
+    fs::create_directories(out);
+    write_study_file(out, overrides, ::getpid());
+  }
   std::vector<CaseRun> runs;
   for (SourceCase& c : cases) {
     if (args.resume) decide_start(c.run);
@@ -191,7 +195,8 @@ void run_study(const SourceArguments& args) {
     common::write_whole_text(out / "study.md", study_markdown(cases, overrides, figures));
   };
   // study.md after every case: an interrupted study leaves the table of the cases done so far.
-  run_cases(runs, {kThreadsPerRun, parallel, args.checkpoint_every, overrides, [&] { write_tables({}); }});
+  run_cases(runs, {kThreadsPerRun, parallel, args.checkpoint_every, overrides, [&] { write_tables({}); }, &ranks});
+  if (!ranks.is_root()) return;
   for (std::size_t k = 0; k < cases.size(); ++k) cases[k].run = runs[k];
   write_tables({});
   std::fflush(stdout);  // before the plotting script prints to the same terminal
