@@ -138,7 +138,7 @@ class Dispatcher {
     if (!finished) return false;
     const auto it = own_.find(finished->pid);
     if (it == own_.end()) return true;
-    ended(it->second.index, finished->exit_code, seconds_since(it->second.started), ranks_.where());
+    ended(it->second.index, finished->exit_code, seconds_since(it->second.started), fmt::format(" on rank {}", kRoot));
     own_.erase(it);
     return true;
   }

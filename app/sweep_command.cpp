@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -41,6 +42,7 @@ constexpr double kDegree = common::kRadiansPerDegree;
 constexpr const char* kTableFile = "sweep.csv";
 constexpr const char* kRecordFile = "sweep.json";        // the sweep file and --set values, for --collect
 constexpr const char* kSlurmScriptFile = "sweep.slurm";  // the job array of --emit-slurm
+constexpr const char* kExitStatusFile = "exit_status";   // a job array task's run's, in its run directory
 
 struct SweepArguments {
   std::string sweep_file;
@@ -232,15 +234,16 @@ std::string slurm_script(const LoadedSweep& s, const CaseRunSettings& settings, 
       "#SBATCH --array=0-{4}\n"
       "#SBATCH --ntasks=1\n"
       "#SBATCH --cpus-per-task={5}\n"
-      "#SBATCH --output={3}/slurm-%A_%a.out\n"
+      "#SBATCH --output={6}/slurm-%A_%a.out\n"
       "set -eu\n"
       "export OMP_NUM_THREADS={5}\n"
       "case \"${{SLURM_ARRAY_TASK_ID:?submit with sbatch, or set SLURM_ARRAY_TASK_ID to a task number}}\" in\n",
       s.sweep.name, command, shell_word((out / kSlurmScriptFile).string()), shell_word(out.string()), order.size() - 1,
-      settings.threads);
+      settings.threads, out.string());  // #SBATCH lines are read by Slurm, not a shell: no quotes
   for (std::size_t task = 0; task < order.size(); ++task) {
     CaseRun c = s.cases[order[task]];
     c.run_dir = out / c.scene.name;
+    c.scene_file = fs::absolute(c.scene_file);  // a task starts in the folder it was submitted from
     c.start = Start::Fresh;
     const std::vector<std::string> fresh = run_arguments(c, settings);
     c.start = Start::FromCheckpoint;
@@ -248,12 +251,16 @@ std::string slurm_script(const LoadedSweep& s, const CaseRunSettings& settings, 
                         shell_array(fresh), shell_array(run_arguments(c, settings)));
   }
   text += fmt::format(
-      "  *) echo \"no case for array task $SLURM_ARRAY_TASK_ID (the tasks are 0-{})\" >&2; exit 2 ;;\n"
+      "  *) echo \"no case for array task $SLURM_ARRAY_TASK_ID (the tasks are 0-{0})\" >&2; exit 2 ;;\n"
       "esac\n"
       "mkdir -p \"$dir\"\n"
-      "if [ -e \"$dir/{}\" ]; then exec \"${{resume[@]}}\" >> \"$dir/run.log\" 2>&1; fi\n"
-      "exec \"${{fresh[@]}}\" > \"$dir/run.log\" 2>&1\n",
-      order.size() - 1, dda::kCheckpointFile);
+      "rm -f \"$dir/{1}\"\n"
+      "status=0\n"
+      "if [ -e \"$dir/{2}\" ]; then \"${{resume[@]}}\" >> \"$dir/run.log\" 2>&1 || status=$?\n"
+      "else \"${{fresh[@]}}\" > \"$dir/run.log\" 2>&1 || status=$?; fi\n"
+      "echo \"$status\" > \"$dir/{1}\"  # for --collect: a run that failed before its summary.json\n"
+      "exit \"$status\"\n",
+      order.size() - 1, kExitStatusFile, dda::kCheckpointFile);
   return text;
 }
 
@@ -268,8 +275,9 @@ void emit_slurm(LoadedSweep& s, const SweepArguments& args) {
   fs::create_directories(s.out);
   write_record(s);
   const CaseRunSettings settings{s.sweep.threads, 1, args.checkpoint_every, s.overrides, {}, nullptr};
-  const std::string command =
-      fmt::format("ddafrac sweep {} --emit-slurm{}", args.sweep_file, args.resume ? " --resume" : "");
+  std::string command = fmt::format("ddafrac sweep {} --out {}", args.sweep_file, s.out.string());
+  for (const std::string& o : s.command_overrides) command += " --set " + o;
+  command += args.resume ? " --emit-slurm --resume" : " --emit-slurm";
   const fs::path script = s.out / kSlurmScriptFile;
   common::write_whole_text(script, slurm_script(s, settings, command));
   fs::permissions(script, fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
@@ -282,8 +290,14 @@ void emit_slurm(LoadedSweep& s, const SweepArguments& args) {
 void collect(const SweepArguments& args) {
   LoadedSweep s = load_recorded(args.collect);
   for (CaseRun& c : s.cases) decide_start(c);  // a completed case's exit status and wall time
-  for (CaseRun& c : s.cases)
-    if (c.start != Start::Finished) c.wall_seconds = summary_wall(read_summary(c.run_dir)).value_or(0.0);
+  for (CaseRun& c : s.cases) {
+    if (c.start == Start::Finished) continue;
+    c.wall_seconds = summary_wall(read_summary(c.run_dir)).value_or(0.0);
+    // A task whose run failed, perhaps before writing its summary (a scene that cannot be meshed);
+    // one stopped (Slurm's time limit, a signal) is unfinished: a resume continues it.
+    const int status = std::atoi(file_text(c.run_dir / kExitStatusFile).value_or("0").c_str());
+    if (status != 0 && case_state(c) != "unfinished") c.exit_code = status;
+  }
   std::map<std::string, int> count_of;
   for (const CaseRun& c : s.cases) ++count_of[case_state(c)];
   std::string counts;
