@@ -37,15 +37,14 @@ bool started_by_mpi_launcher() {
   return false;
 }
 
-/// The cores this process may run on (its affinity mask; what a launcher's binding leaves it).
-int cores_allowed() {
+/// The cores this process may run on (its affinity mask: what a launcher's binding leaves it).
+cpu_set_t cores_allowed() {
   cpu_set_t set;
   CPU_ZERO(&set);
-  if (sched_getaffinity(0, sizeof(set), &set) != 0) return static_cast<int>(std::thread::hardware_concurrency());
-  return CPU_COUNT(&set);
+  if (sched_getaffinity(0, sizeof(set), &set) != 0)
+    for (unsigned core = 0; core < std::max(1u, std::thread::hardware_concurrency()); ++core) CPU_SET(core, &set);
+  return set;
 }
-
-int cores_of_machine() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
 
 std::string host_name() {
   std::array<char, 256> name{};
@@ -55,9 +54,8 @@ std::string host_name() {
 }  // namespace
 
 int CaseRanks::cores_for_runs() const {
-  const int allowed = cores_allowed();
-  if (allowed > 0 && allowed < cores_of_machine()) return allowed;  // bound: these cores are its own
-  return std::max(1, cores_of_machine() / ranks_on_node_);
+  const cpu_set_t allowed = cores_allowed();
+  return std::max(1, CPU_COUNT(&allowed) / ranks_sharing_cores_);
 }
 
 std::string CaseRanks::where() const {
@@ -215,6 +213,22 @@ void work_for_root(std::vector<CaseRun>& cases, const CaseRunSettings& settings,
   }
 }
 
+/// How many ranks of this node (this one included) may run on exactly this rank's cores: all of
+/// the node's when the launcher bound none (mpirun --bind-to none, srun without binding), one
+/// when it bound each to cores of its own, those of a socket when it bound to sockets.
+int ranks_with_my_cores() {
+  MPI_Comm node;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int ranks = 1;
+  MPI_Comm_size(node, &ranks);
+  const cpu_set_t mine = cores_allowed();
+  std::vector<cpu_set_t> all(static_cast<std::size_t>(ranks));
+  MPI_Allgather(&mine, sizeof(cpu_set_t), MPI_BYTE, all.data(), sizeof(cpu_set_t), MPI_BYTE, node);
+  MPI_Comm_free(&node);
+  return static_cast<int>(
+      std::count_if(all.begin(), all.end(), [&](const cpu_set_t& other) { return CPU_EQUAL(&other, &mine); }));
+}
+
 }  // namespace
 
 CaseRanks::CaseRanks() {
@@ -226,10 +240,7 @@ CaseRanks::CaseRanks() {
   finalize_ = !already;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
-  MPI_Comm node;
-  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
-  MPI_Comm_size(node, &ranks_on_node_);
-  MPI_Comm_free(&node);
+  ranks_sharing_cores_ = ranks_with_my_cores();
   host_ = host_name();
 }
 

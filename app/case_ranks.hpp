@@ -25,9 +25,9 @@ class CaseRanks {
   int size() const { return size_; }
   bool is_root() const { return rank_ == 0; }  // the rank that hands out cases and writes tables
 
-  /// The cores this rank's runs may use: those it is bound to, if the launcher bound it to some;
-  /// else its share of the node's, divided among the ranks on the node. Under MPI, a command's
-  /// "runs at once" (--parallel) counts per rank.
+  /// The cores this rank's runs may use: those it may run on (all of the machine's when started
+  /// plainly; those the launcher bound it to under MPI), shared with the other ranks of the node
+  /// that may run on the same ones. Under MPI, a command's "runs at once" counts per rank.
   int cores_for_runs() const;
 
   /// " on rank R of N (host)" for the lines a rank prints; empty when started plainly.
@@ -38,7 +38,7 @@ class CaseRanks {
   bool finalize_ = false;  // MPI was started here, so it is ended here
   int rank_ = 0;
   int size_ = 1;
-  int ranks_on_node_ = 1;
+  int ranks_sharing_cores_ = 1;  // this one and the others of its node that may run on its cores
   std::string host_;
 };
 

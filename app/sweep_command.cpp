@@ -158,15 +158,16 @@ std::vector<Cracks> ended_cracks(const std::vector<CaseRun>& cases, double crack
 
 std::string table_csv(const std::vector<CaseRun>& cases, const std::vector<Cracks>& cracks_of, const fs::path& out) {
   std::string csv =
-      "case,scene,theta_deg,gamma,v0,cracks_total,cracks_tensile,cracks_shear,run_time_s,exit_status,run_dir,state\n";
+      "case,scene,theta_deg,gamma,v0,cracks_total,cracks_tensile,cracks_shear,run_time_s,exit_status,run_dir,state,"
+      "expected_block_steps\n";
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const CaseRun& c = cases[k];
     const Cracks& n = cracks_of[k];
     const std::string cracks = n ? fmt::format("{:g},{:g},{:g}", (*n)[0], (*n)[1], (*n)[2]) : ",,";
     const std::string exit_status = c.exit_code >= 0 ? std::to_string(c.exit_code) : "";
-    csv += fmt::format("{},{},{},{},{:.3f},{},{},{}\n", c.scene.name, csv_field(c.scene_file.string()),
+    csv += fmt::format("{},{},{},{},{:.3f},{},{},{},{:.4g}\n", c.scene.name, csv_field(c.scene_file.string()),
                        impact_columns(c.scene), cracks, c.wall_seconds, exit_status,
-                       csv_field(fs::relative(c.run_dir, out).string()), case_state(c));
+                       csv_field(fs::relative(c.run_dir, out).string()), case_state(c), expected_cost(c.scene));
   }
   return csv;
 }
@@ -247,8 +248,9 @@ std::string slurm_script(const LoadedSweep& s, const CaseRunSettings& settings, 
     c.start = Start::Fresh;
     const std::vector<std::string> fresh = run_arguments(c, settings);
     c.start = Start::FromCheckpoint;
-    text += fmt::format("  {}) dir={} fresh={} resume={} ;;\n", task, shell_word(c.run_dir.string()),
-                        shell_array(fresh), shell_array(run_arguments(c, settings)));
+    text += fmt::format("  # {}: about {:.3g} block-steps\n  {}) dir={} fresh={} resume={} ;;\n", c.scene.name,
+                        expected_cost(c.scene), task, shell_word(c.run_dir.string()), shell_array(fresh),
+                        shell_array(run_arguments(c, settings)));
   }
   text += fmt::format(
       "  *) echo \"no case for array task $SLURM_ARRAY_TASK_ID (the tasks are 0-{0})\" >&2; exit 2 ;;\n"
