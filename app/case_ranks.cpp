@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "case_runs.hpp"
+#include "commands.hpp"
 #include "subprocess.hpp"
 
 #ifdef DDAFRAC_WITH_MPI
@@ -29,8 +30,8 @@ using Clock = std::chrono::steady_clock;
 
 /// The variables by which a process knows an MPI launcher started it: Open MPI's mpirun, a
 /// PMIx launcher (srun --mpi=pmix, prterun), a PMI-1/2 launcher (MPICH's mpiexec, srun
-/// --mpi=pmi2). A plain start has none of them and never starts MPI (Open MPI's singleton start
-/// is slow and fails in some containers).
+/// --mpi=pmi2). A plain start has none of them and never starts MPI: there is nothing to share,
+/// and a one-rank MPI start costs about a second and needs a working MPI runtime.
 bool started_by_mpi_launcher() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK"})
     if (std::getenv(name) != nullptr) return true;
@@ -44,11 +45,6 @@ cpu_set_t cores_allowed() {
   if (sched_getaffinity(0, sizeof(set), &set) != 0)
     for (unsigned core = 0; core < std::max(1u, std::thread::hardware_concurrency()); ++core) CPU_SET(core, &set);
   return set;
-}
-
-std::string host_name() {
-  std::array<char, 256> name{};
-  return gethostname(name.data(), name.size() - 1) == 0 ? std::string(name.data()) : std::string("?");
 }
 
 }  // namespace
@@ -66,9 +62,9 @@ std::string CaseRanks::where() const {
 
 CaseRanks::CaseRanks() {
   if (started_by_mpi_launcher())
-    fmt::print(stderr,
-               "ddafrac: started by an MPI launcher, but this ddafrac was built without MPI: every rank "
-               "would run every case; run it without mpirun/srun\n");
+    throw CommandFailed(
+        "started by an MPI launcher, but this ddafrac was built without MPI (every rank would run every case): "
+        "run it without mpirun/srun, or use --emit-slurm");
 }
 CaseRanks::~CaseRanks() = default;
 
@@ -77,6 +73,11 @@ void run_cases_over_ranks(std::vector<CaseRun>&, const CaseRunSettings&, const C
 #else
 
 namespace {
+
+std::string host_name() {
+  std::array<char, 256> name{};
+  return gethostname(name.data(), name.size() - 1) == 0 ? std::string(name.data()) : std::string("?");
+}
 
 /// The messages between rank 0 and the others. A rank with a free slot asks for a case; rank 0
 /// answers with a case (index into the cases, how it starts) or with "no more"; a rank whose

@@ -313,7 +313,10 @@ void run_sweep(const SweepArguments& args) {
   if (!args.collect.empty()) return collect(args);
   const CaseRanks ranks;
   LoadedSweep s = load(args.sweep_file, args.overrides, args.out);
-  if (args.emit_slurm) return emit_slurm(s, args);
+  if (args.emit_slurm) {
+    if (ranks.is_root()) emit_slurm(s, args);
+    return;
+  }
 
   const int parallel = args.parallel > 0      ? args.parallel
                        : s.sweep.parallel > 0 ? s.sweep.parallel
