@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "case_ranks.hpp"
 #include "commands.hpp"
 #include "ddafrac/dda/checkpoint.hpp"
 #include "ddafrac/dda/run.hpp"
@@ -38,6 +39,8 @@ void refuse_shared_names(const std::vector<CaseRun>& cases) {
         problems);
 }
 
+}  // namespace
+
 std::vector<std::string> run_arguments(const CaseRun& c, const CaseRunSettings& settings) {
   std::vector<std::string> argv{own_executable().string(), "run", "--threads", std::to_string(settings.threads)};
   if (settings.checkpoint_every) {
@@ -57,8 +60,6 @@ std::vector<std::string> run_arguments(const CaseRun& c, const CaseRunSettings& 
   }
   return argv;
 }
-
-}  // namespace
 
 std::string csv_field(const std::string& text) {
   if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
@@ -135,46 +136,79 @@ void decide_start(CaseRun& c) {
   c.start = Start::Fresh;
 }
 
+double expected_cost(const scene::Scene& s) {
+  return static_cast<double>(s.mesh.target_blocks) * s.analysis.end_time / s.analysis.dt_max;
+}
+
+std::vector<std::size_t> dispatch_order(const std::vector<CaseRun>& cases) {
+  std::vector<std::size_t> order;
+  for (std::size_t k = 0; k < cases.size(); ++k)
+    if (cases[k].start != Start::Finished) order.push_back(k);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return expected_cost(cases[a].scene) > expected_cost(cases[b].scene);
+  });
+  return order;
+}
+
+pid_t start_case(const CaseRun& c, const CaseRunSettings& settings, const std::string& where) {
+  fs::create_directories(c.run_dir);
+  const fs::path log = c.run_dir / "run.log";
+  // A resumed run's log goes on after the stopped one's.
+  if (c.start == Start::Fresh) fs::remove(log);
+  // The run is a process of its own, not a call in this one: a run that crashes or is killed
+  // loses only its case, and under MPI the rank goes on. Spawning costs milliseconds against a
+  // case's seconds to hours. The child gets no MPI launcher variables, so that it never takes
+  // itself for this rank.
+  const pid_t pid = spawn_process(run_arguments(c, settings), log, environment_outside_mpi());
+  fmt::print("{} {} ({}){}\n", c.start == Start::FromCheckpoint ? "resumed " : "started ", c.scene.name,
+             c.scene_file.string(), where);
+  std::fflush(stdout);
+  return pid;
+}
+
+void record_end(CaseRun& c, int exit_code, double measured_seconds) {
+  c.exit_code = exit_code;
+  c.wall_seconds = measured_seconds;
+  // A resumed case took the time of all its parts.
+  if (c.start == Start::FromCheckpoint)
+    c.wall_seconds = summary_wall(read_summary(c.run_dir)).value_or(measured_seconds);
+}
+
+void print_end(const CaseRun& c, std::size_t done, std::size_t total, const std::string& where) {
+  fmt::print(
+      "[{}/{}] {} {} in {:.1f} s{}{}\n", done, total, c.scene.name, c.exit_code == 0 ? "finished" : "FAILED",
+      c.wall_seconds, where,
+      c.exit_code == 0 ? "" : fmt::format(" (exit status {}; see {})", c.exit_code, (c.run_dir / "run.log").string()));
+  std::fflush(stdout);
+}
+
 void run_cases(std::vector<CaseRun>& cases, const CaseRunSettings& settings) {
+  std::size_t done = 0;
+  const bool prints = !settings.ranks || settings.ranks->is_root();
+  for (const CaseRun& c : cases) {
+    if (c.start != Start::Finished) continue;
+    ++done;
+    if (prints) fmt::print("[{}/{}] {} finished before (kept)\n", done, cases.size(), c.scene.name);
+  }
+  if (settings.ranks && settings.ranks->size() > 1) return run_cases_over_ranks(cases, settings, *settings.ranks);
+
+  const std::vector<std::size_t> order = dispatch_order(cases);
   std::map<pid_t, std::pair<std::size_t, Clock::time_point>> running;
-  std::size_t next = 0, done = 0;
+  std::size_t next = 0;
   while (done < cases.size()) {
-    while (next < cases.size() && static_cast<int>(running.size()) < settings.parallel) {
-      CaseRun& c = cases[next++];
-      if (c.start == Start::Finished) {
-        fmt::print("[{}/{}] {} finished before (kept)\n", ++done, cases.size(), c.scene.name);
-        continue;
-      }
-      fs::create_directories(c.run_dir);
-      const fs::path log = c.run_dir / "run.log";
-      // A resumed run's log goes on after the stopped one's.
-      if (c.start == Start::Fresh) fs::remove(log);
-      running[spawn_process(run_arguments(c, settings), log)] = {next - 1, Clock::now()};
-      fmt::print("{} {} ({})\n", c.start == Start::FromCheckpoint ? "resumed " : "started ", c.scene.name,
-                 c.scene_file.string());
-      std::fflush(stdout);
+    while (next < order.size() && static_cast<int>(running.size()) < settings.parallel) {
+      running[start_case(cases[order[next]], settings, "")] = {order[next], Clock::now()};
+      ++next;
     }
-    if (done == cases.size()) break;
     const Finished finished = wait_for_any_child();
     const auto it = running.find(finished.pid);
     if (it == running.end()) continue;
     CaseRun& c = cases[it->second.first];
-    c.exit_code = finished.exit_code;
-    c.wall_seconds = std::chrono::duration<double>(Clock::now() - it->second.second).count();
+    record_end(c, finished.exit_code, std::chrono::duration<double>(Clock::now() - it->second.second).count());
     running.erase(it);
-    ++done;
-    fmt::print("[{}/{}] {} {} in {:.1f} s{}\n", done, cases.size(), c.scene.name,
-               c.exit_code == 0 ? "finished" : "FAILED", c.wall_seconds,
-               c.exit_code == 0
-                   ? ""
-                   : fmt::format(" (exit status {}; see {})", c.exit_code, (c.run_dir / "run.log").string()));
-    std::fflush(stdout);
+    print_end(c, ++done, cases.size(), "");
     if (settings.after_each) settings.after_each();
   }
-  // A resumed case took the time of all its parts.
-  for (CaseRun& c : cases)
-    if (c.start == Start::FromCheckpoint)
-      c.wall_seconds = summary_wall(read_summary(c.run_dir)).value_or(c.wall_seconds);
 }
 
 }  // namespace ddafrac::app

@@ -10,8 +10,8 @@
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <thread>
 
+#include "case_ranks.hpp"
 #include "commands.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "figures.hpp"
@@ -97,21 +97,25 @@ void print_status(const StudyKind& kind, const StudyArguments& args) {
 }
 
 void run_study(const StudyKind& kind, const StudyArguments& args) {
+  const CaseRanks ranks;  // under mpirun or srun, the cases are spread over the ranks
   const fs::path out(args.out);
   const json previous = read_study_file(out);
-  if (previous.is_object() && alive(previous.value("pid", 0L)) && previous.value("pid", 0L) != ::getpid())
+  if (ranks.is_root() && previous.is_object() && alive(previous.value("pid", 0L)) &&
+      previous.value("pid", 0L) != ::getpid())
     throw CommandFailed(fmt::format("{}: a study is running in {} (process {}); see --status", kind.command,
                                     out.string(), previous.value("pid", 0L)));
   const std::vector<std::string> overrides = args.resume ? study_overrides(args, previous) : args.overrides;
   std::vector<StudyCase> cases = choose_cases(kind.load(overrides), args.cases, kind.command);
 
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int parallel = args.parallel > 0 ? args.parallel : std::max(1, cores / kThreadsPerRun);
-  fmt::print("{}: {} cases, {} at a time, {} thread each, into {}{}\n", kind.command, cases.size(), parallel,
-             kThreadsPerRun, out.string(),
-             overrides.empty() ? std::string() : fmt::format(" (--set {})", fmt::join(overrides, " --set ")));
-  fs::create_directories(out);
-  write_study_file(out, overrides, ::getpid());
+  const int parallel = args.parallel > 0 ? args.parallel : std::max(1, ranks.cores_for_runs() / kThreadsPerRun);
+  if (ranks.is_root()) {
+    fmt::print("{}: {} cases, {} at a time{}, {} thread each, into {}{}\n", kind.command, cases.size(), parallel,
+               ranks.size() > 1 ? fmt::format(" on each of {} ranks", ranks.size()) : std::string(), kThreadsPerRun,
+               out.string(),
+               overrides.empty() ? std::string() : fmt::format(" (--set {})", fmt::join(overrides, " --set ")));
+    fs::create_directories(out);
+    write_study_file(out, overrides, ::getpid());
+  }
   std::vector<CaseRun> runs;
   for (StudyCase& c : cases) {
     if (args.resume) decide_start(c.run);
@@ -119,7 +123,8 @@ void run_study(const StudyKind& kind, const StudyArguments& args) {
   }
   // The tables after every case: an interrupted study leaves those of the cases done so far.
   run_cases(runs, {kThreadsPerRun, parallel, args.checkpoint_every, overrides,
-                   [&] { kind.write_tables(cases, overrides, {}); }});
+                   [&] { kind.write_tables(cases, overrides, {}); }, &ranks});
+  if (!ranks.is_root()) return;
   for (std::size_t k = 0; k < cases.size(); ++k) cases[k].run = runs[k];
   kind.write_tables(cases, overrides, {});
   std::fflush(stdout);  // before the plotting script prints to the same terminal

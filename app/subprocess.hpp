@@ -4,14 +4,22 @@
 #include <sys/types.h>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace ddafrac::app {
 
 /// Starts `argv` (argv[0] is the program path) with stdout and stderr appended to `log`
-/// (or inherited if `log` is empty). Throws std::runtime_error if it cannot start.
-pid_t spawn_process(const std::vector<std::string>& argv, const std::filesystem::path& log = {});
+/// (or inherited if `log` is empty), with this process's environment or, if given, with
+/// `environment` ("NAME=value" entries). Throws std::runtime_error if it cannot start.
+pid_t spawn_process(const std::vector<std::string>& argv, const std::filesystem::path& log = {},
+                    const std::optional<std::vector<std::string>>& environment = std::nullopt);
+
+/// This process's environment without what an MPI launcher (mpirun, srun) gives its ranks
+/// (OMPI_*, PMIX_*, PMI_*): a child started from a rank with those would take itself for that
+/// rank, and were it to start MPI it would hang or fail.
+std::vector<std::string> environment_outside_mpi();
 
 struct Finished {
   pid_t pid = 0;
@@ -20,6 +28,9 @@ struct Finished {
 
 /// Waits for any child to finish.
 Finished wait_for_any_child();
+
+/// A child that has finished, if any has, without waiting.
+std::optional<Finished> finished_child();
 
 /// Runs `argv` to completion; returns its exit code.
 int run_process(const std::vector<std::string>& argv, const std::filesystem::path& log = {});

@@ -3,6 +3,7 @@
 #define BOOST_TEST_MODULE scene_files
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -77,5 +78,20 @@ BOOST_AUTO_TEST_CASE(impact_sweep_lists_the_fifteen_cases) {
   BOOST_TEST(sweep.cases.size() == 15u);
   BOOST_TEST(sweep.crack_time == 1.8e-3);
   BOOST_TEST(sweep.threads == 1);
+  for (const auto& file : sweep.cases) BOOST_TEST(fs::exists(file));
+}
+
+// The source study as a sweep (for mpirun and --emit-slurm): the 3 flattened, 4 pre-cracked and
+// 15 impact scenes of `ddafrac study source`, one thread each.
+BOOST_AUTO_TEST_CASE(source_study_sweep_lists_the_twenty_two_cases) {
+  const scene::Sweep sweep = scene::load_sweep(kScenes / "source_study.sweep.toml");
+  BOOST_TEST(sweep.cases.size() == 22u);
+  BOOST_TEST(sweep.threads == 1);
+  const auto in = [&](const char* folder) {
+    return std::count_if(sweep.cases.begin(), sweep.cases.end(),
+                         [&](const fs::path& file) { return file.parent_path().filename() == folder; });
+  };
+  BOOST_TEST(in("brazilian") == 7);
+  BOOST_TEST(in("impact") == 15);
   for (const auto& file : sweep.cases) BOOST_TEST(fs::exists(file));
 }
