@@ -174,6 +174,8 @@ nlohmann::json run_dynamic(const FemArguments& args, const scene::Scene& s, mesh
           {"snapshots", result.snapshots.size()},
           {"newmark", {{"beta", problem.newmark.beta}, {"gamma", problem.newmark.gamma}}},
           {"stats", stats_json(result.stats)},
+          {"setup_seconds",
+           {{"model", result.setup.model}, {"assembly", result.setup.assembly}, {"solver", result.setup.solver}}},
           {"step_ms", step_times_json(result)}};
 }
 

@@ -70,6 +70,7 @@ class NewmarkRun {
  private:
   void setup_system();
   void assemble_system();
+  void build_solver();
   void assemble_rhs(double t);
   void solve();
   void update();
@@ -102,8 +103,13 @@ NewmarkRun::NewmarkRun(const DynamicProblem& problem)
       c_a_(0.5 / problem.newmark.beta - 1.0) {}
 
 DynamicResult NewmarkRun::run() {
-  setup_system();
-  assemble_system();
+  result_.setup.model = timer_.wall_time();  // the model was built by the constructor
+  {
+    const PhaseTimer timing(result_.setup.assembly);
+    setup_system();
+    assemble_system();
+  }
+  build_solver();
   result_.stats.setup_seconds = timer_.wall_time();
   timer_.restart();
 
@@ -160,13 +166,18 @@ void NewmarkRun::setup_system() {
 }
 
 /// K and the consistent M with the constraints condensed, and the effective matrix of the
-/// step, K + c_u M, with its solver (factorised or preconditioned once).
+/// step, K + c_u M.
 void NewmarkRun::assemble_system() {
   model_.make_sparse_matrix(stiffness_, constraints_);
   model_.make_sparse_matrix(mass_, constraints_);
   model_.assemble(constraints_, stiffness_, &mass_);
   effective_.copy_from(stiffness_);
   effective_.add(c_u_, mass_);
+}
+
+/// The solver of the effective matrix: factorised, or its AMG set up, once.
+void NewmarkRun::build_solver() {
+  const PhaseTimer timing(result_.setup.solver);
   solver_ = detail::make_step_solver(problem_.step_solver, effective_, model_, problem_.cg);
   result_.stats.solver = solver_->name();
 }

@@ -1,7 +1,9 @@
-// Issue 5, test 5: the same small static Hondros discs (triangles and quads, p = 2) and the same
-// short impact response solved serially and with `mpirun -np 2` (the mesh partitioned by METIS,
-// assembly distributed; static: CG + AMG distributed; dynamic: the gathered matrix factorised on
-// every rank) give the same stresses to the solver tolerance.
+// Issue 5, test 5 (and issue 15 part 3): the same small static Hondros discs (triangles and
+// quads, p = 2) and the same short impact response solved serially and with `mpirun -np 2`
+// (each rank holding only its METIS part of the mesh, everything distributed; static: CG + AMG;
+// dynamic: CHOLMOD serially, MUMPS distributed on 2 ranks; gauges and profile points evaluated
+// by the rank that owns their cell) give the same stresses to the solver tolerance, and the two
+// ranks' VTU pieces hold every cell once.
 
 #define BOOST_TEST_MODULE fem_mpi
 #include <boost/test/unit_test.hpp>
@@ -18,12 +20,16 @@
 
 namespace {
 
-// CG stops at |r| <= 1e-10 |b| (SolverSettings default). The iterates of the two runs differ
-// (another AMG hierarchy), so stresses agree to a small multiple of the tolerance times the
-// condition of the map from residual to stress; 1e-7 of each case's stress scale leaves room
-// for that and is still six orders below any discretisation error the tests assert.
+// Static: CG stops at |r| <= 1e-10 |b| (SolverSettings default). The iterates of the two runs
+// differ (another AMG hierarchy), so stresses agree to a small multiple of the tolerance
+// (measured: 1.7e-11 triangles, 2.4e-11 quadrilaterals, of each case's stress scale).
+// Dynamic: two direct solvers, so the histories agree to round-off grown over 60 steps
+// (measured: 5.0e-13 gauges, 1.6e-13 energy).
 constexpr double solver_tolerance = 1e-10;
-constexpr double agreement = 1e3 * solver_tolerance;
+constexpr double static_agreement = 10.0 * solver_tolerance;
+constexpr double direct_agreement = 1e-11;
+
+double agreement(const std::string& kind) { return kind.rfind("static", 0) == 0 ? static_agreement : direct_agreement; }
 
 using Values = std::map<std::string, double>;  // "case,point,quantity" -> value
 
@@ -108,7 +114,7 @@ BOOST_AUTO_TEST_CASE(serial_and_two_ranks_agree) {
     const std::string kind = key.substr(0, key.find(','));
     const double difference = std::abs(it->second - value) / scale[kind];
     worst[kind] = std::max(worst[kind], difference);
-    BOOST_TEST(difference < agreement, key << ": serial " << value << ", np 2 " << it->second);
+    BOOST_TEST(difference < agreement(kind), key << ": serial " << value << ", np 2 " << it->second);
   }
   BOOST_REQUIRE_EQUAL(scale.size(), 4u);  // static_tri, static_quad, dynamic, energy
 

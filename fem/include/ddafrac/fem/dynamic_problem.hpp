@@ -89,6 +89,13 @@ struct SnapshotRecord {
   std::string file;  // the .pvtu record, relative to the snapshot directory
 };
 
+/// Wall time of the setup by phase (s); their sum is RunStats::setup_seconds.
+struct SetupTimes {
+  double model = 0.0;     // triangulation (whole mesh built and partitioned on every rank), DoFs, geometry
+  double assembly = 0.0;  // constraints, gauges located, K and M assembled
+  double solver = 0.0;    // factorisation or AMG set-up of K + c_u M
+};
+
 /// Wall time of the time loop by phase, summed over all steps (s): where a step's time goes.
 struct StepTimes {
   double rhs = 0.0;     // Newmark right-hand side: vector updates and the product with M
@@ -104,6 +111,7 @@ struct DynamicResult {
   std::vector<SnapshotRecord> snapshots;
   std::vector<EnergyRecord> energy;
   RunStats stats;
+  SetupTimes setup;
   StepTimes times;
   int steps = 0;
 };
