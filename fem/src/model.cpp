@@ -181,24 +181,47 @@ void build_coarse(const meshes::Mesh& mesh, dealii::Triangulation<dim>& tria) {
 
 }  // namespace
 
-/// The whole mesh is built, refined and partitioned (METIS, the same on every rank) on every
-/// rank, then each rank keeps its own cells and a layer of ghosts. Each kept cell remembers its
-/// place in the whole mesh's cell order (point location breaks ties by it).
+/// Rank 0 alone builds the whole mesh, refines it and partitions it (METIS), and sends each
+/// rank the description of its own cells and their ghosts.
 void Model::build_triangulation(const meshes::Mesh& mesh, const Discretisation& disc) {
-  dealii::Triangulation<dim> whole;
-  build_coarse(mesh, whole);
   for (std::size_t g = 0; g < mesh.boundary_names.size(); ++g)
     boundary_ids_[mesh.boundary_names[g]] = static_cast<BoundaryId>(g + 1);
-  if (disc.refinements > 0) whole.refine_global(static_cast<unsigned int>(disc.refinements));
-  dealii::GridTools::partition_triangulation(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD), whole);
+  const auto refinements = static_cast<unsigned int>(std::max(disc.refinements, 0));
+  const unsigned int ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  const auto description =
+      dealii::TriangulationDescription::Utilities::create_description_from_triangulation_in_groups<dim, dim>(
+          [&](dealii::Triangulation<dim>& whole) {
+            build_coarse(mesh, whole);
+            if (refinements > 0) whole.refine_global(refinements);
+          },
+          [ranks](dealii::Triangulation<dim>& whole, const MPI_Comm&, unsigned int) {
+            dealii::GridTools::partition_triangulation(ranks, whole);
+          },
+          MPI_COMM_WORLD, static_cast<int>(ranks));
   tria_.set_manifold(rim_manifold, dealii::SphericalManifold<dim>(Point()));
-  tria_.create_triangulation(
-      dealii::TriangulationDescription::Utilities::create_description_from_triangulation(whole, MPI_COMM_WORLD));
-  order_of_cell_.assign(tria_.n_active_cells(), 0);
-  for (const auto& cell : tria_.active_cell_iterators())
-    if (cell->is_locally_owned())
-      order_of_cell_[cell->active_cell_index()] = whole.create_cell_iterator(cell->id())->active_cell_index();
+  tria_.create_triangulation(description);
 }
+
+namespace {
+
+/// A cell's place in the whole mesh's active-cell order. Uniform refinement numbers the cells
+/// of a level by parent, then child, so that order is the coarse cell, then the child index at
+/// each level down to the cell: the same on every rank, whatever the partition.
+std::uint64_t order_in_whole_mesh(const typename Tria::cell_iterator& cell) {
+  std::vector<unsigned int> path;  // child indices, finest first
+  auto ancestor = cell;
+  while (ancestor->level() > 0) {
+    const auto parent = ancestor->parent();
+    path.push_back(parent->child_iterator_to_index(ancestor));
+    ancestor = parent;
+  }
+  std::uint64_t order = ancestor->id().get_coarse_cell_id();
+  for (auto child = path.rbegin(); child != path.rend(); ++child)
+    order = order * dealii::GeometryInfo<dim>::max_children_per_cell + *child;
+  return order;
+}
+
+}  // namespace
 
 /// Geometry support points of every cell this rank sees (own and ghost), the DoF positions,
 /// components and siblings of its relevant DoFs, and the mapping's coordinate vector.
@@ -253,10 +276,9 @@ void Model::build_geometry() {
     }
     if (!cell->is_locally_owned()) continue;
     cells_.push_back(cell);
-    cell_order_.push_back(order_of_cell_[cell->active_cell_index()]);
+    cell_order_.push_back(order_in_whole_mesh(cell));
     cell_nodes_.push_back(std::move(nodes));
   }
-  order_of_cell_ = {};
   geometry.compress(dealii::VectorOperation::insert);
   geometry_ = make_ghosted();
   geometry_ = geometry;

@@ -32,8 +32,8 @@ namespace ddafrac::fem::detail {
 constexpr int dim = 2;
 // Each rank holds only its own cells and one layer of ghost cells (a fully distributed
 // triangulation, which supports simplices, unlike p4est's in deal.II 9.4), so memory per rank
-// falls with the rank count. The coarse mesh is built and partitioned (METIS) whole on every
-// rank during setup and dropped afterwards.
+// falls with the rank count. Rank 0 builds and partitions (METIS) the whole mesh during setup
+// and drops it afterwards.
 using Tria = dealii::parallel::fullydistributed::Triangulation<dim>;
 using DofHandler = dealii::DoFHandler<dim>;
 using Matrix = dealii::TrilinosWrappers::SparseMatrix;
@@ -151,7 +151,6 @@ class Model {
   std::vector<std::vector<Point>> cell_nodes_;
   std::vector<typename DofHandler::active_cell_iterator> cells_;
   std::vector<std::uint64_t> cell_order_;
-  std::vector<std::uint64_t> order_of_cell_;  // the same by local active cell index, during setup
   // Point location: a uniform grid of cell bounding boxes, the same grid on every rank (origin
   // and step from the whole mesh), stored over this rank's part of it only.
   Point grid_origin_;
