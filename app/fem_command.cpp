@@ -2,7 +2,8 @@
 // the scene's disc. Static scenes (plain disc with load arcs, flattened disc, slit disc) give
 // the stress field, profiles along both diameters, gauges and a VTU; the impact scene gives the
 // elastodynamic gauge histories (the disc moving at v0 with the impact patch held from t = 0),
-// energies and VTU snapshots listed in run.pvd. Under mpirun, rank 0 writes.
+// energies and VTU snapshots listed in run.pvd. Under mpirun each rank holds and writes only its
+// part of the mesh (VTU pieces under a .pvtu record); rank 0 writes the rest.
 
 #include <fmt/core.h>
 #include <CLI/CLI.hpp>
@@ -52,7 +53,8 @@ struct FemArguments {
   fem::StepSolverKind step_solver = fem::StepSolverKind::automatic;
 };
 
-/// Under mpirun every rank computes; rank 0 alone writes the run directory and prints.
+/// Under mpirun every rank computes; rank 0 alone writes the CSVs and summary and prints (each
+/// rank writes its own VTU piece).
 bool is_root() { return fem::Environment::rank() == 0; }
 
 void write_output(const std::filesystem::path& path, const std::string& text) {
