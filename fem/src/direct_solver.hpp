@@ -1,10 +1,10 @@
 #pragma once
 // Internal: a sparse Cholesky factorisation (L D L^T, CHOLMOD of SuiteSparse) of one symmetric
 // positive definite matrix, computed once; each solve is then two triangular solves and costs
-// the same at every step, whatever the right-hand side. Like the mesh, the factor is whole on
-// every MPI rank (each rank gathers the matrix and factorises it): a solve gathers b, every
-// rank solves the same system, and each keeps its own entries of x, so that any number of
-// ranks gives the serial answer to round-off.
+// the same at every step, whatever the right-hand side. It is the step solver on one MPI rank
+// (step_solver.hpp). On several ranks it still works but does not scale: the factor is whole
+// on every rank (each gathers the matrix and factorises it), a solve gathers b, every rank
+// solves the same system and keeps its own entries of x.
 
 #include <memory>
 #include <vector>

@@ -12,8 +12,8 @@
 #include "ddafrac/common/whole_file.hpp"
 
 #include "ddafrac/common/angles.hpp"
-#include "direct_solver.hpp"
 #include "model.hpp"
+#include "step_solver.hpp"
 
 namespace ddafrac::fem {
 
@@ -60,8 +60,8 @@ const DynamicProblem& checked(const DynamicProblem& problem) {
 /// initial state, then K, M and the effective matrix K + c_u M with its solver (built once: the
 /// matrix does not change at a fixed dt), then per step the right-hand side, the solve and the
 /// update of a, v and u, with gauges, energies and snapshots recorded at their intervals.
-/// The effective matrix is factorised (sparse Cholesky) so that a step costs one product with
-/// M and two triangular solves.
+/// The effective matrix is factorised (sparse Cholesky on one rank, MUMPS on more) so that a
+/// step costs one product with M and two triangular solves.
 class NewmarkRun {
  public:
   explicit NewmarkRun(const DynamicProblem& problem);
@@ -70,6 +70,7 @@ class NewmarkRun {
  private:
   void setup_system();
   void assemble_system();
+  void build_solver();
   void assemble_rhs(double t);
   void solve();
   void update();
@@ -83,11 +84,12 @@ class NewmarkRun {
   // a_new = c_u (u_new - u) - c_v v - c_a a, the Newmark relations solved for a_new.
   const double c_u_, c_v_, c_a_;
   detail::Constraints constraints_;
-  detail::Matrix stiffness_, mass_;
-  std::unique_ptr<detail::DirectSolver> solver_;
+  detail::Matrix stiffness_, mass_, effective_;
+  std::unique_ptr<detail::StepSolver> solver_;
   detail::Vec patch_load_;                    // N/m per Pa: nodal load of a unit pressure on the patch
   std::vector<detail::Model::Probe> gauges_;  // one per problem gauge, located once
   detail::Vec u_, v_, a_;                     // state carried between steps: m, m/s, m/s^2
+  detail::Vec ghosted_u_, ghosted_v_;         // u and v with ghost entries, for sampling
   detail::Vec w_, rhs_, u_new_, scratch_;     // per-step scratch
   DynamicResult result_;
 };
@@ -101,8 +103,13 @@ NewmarkRun::NewmarkRun(const DynamicProblem& problem)
       c_a_(0.5 / problem.newmark.beta - 1.0) {}
 
 DynamicResult NewmarkRun::run() {
-  setup_system();
-  assemble_system();
+  result_.setup.model = timer_.wall_time();  // the model was built by the constructor
+  {
+    const PhaseTimer timing(result_.setup.assembly);
+    setup_system();
+    assemble_system();
+  }
+  build_solver();
   result_.stats.setup_seconds = timer_.wall_time();
   timer_.restart();
 
@@ -111,6 +118,7 @@ DynamicResult NewmarkRun::run() {
   const bool snapshots = !problem_.snapshot_directory.empty() && problem_.snapshot_interval > 0.0;
   const auto every_snapshot = std::max(1, static_cast<int>(std::lround(problem_.snapshot_interval / dt_)));
   if (snapshots && detail::is_root()) std::filesystem::create_directories(problem_.snapshot_directory / "vtk");
+  if (snapshots) MPI_Barrier(MPI_COMM_WORLD);  // every rank writes its piece there
   record(0.0);
   if (snapshots) snapshot(0.0);
   for (int n = 1; n <= steps; ++n) {
@@ -131,39 +139,47 @@ DynamicResult NewmarkRun::run() {
 /// towards -y with the held patch at rest and no stress; the gauges located in the mesh.
 void NewmarkRun::setup_system() {
   const auto patch = model_.require_boundary(problem_.held_group);
+  constraints_.reinit(model_.relevant());
   if (!problem_.pulse)
     for (const auto i : model_.boundary_dofs(patch, -1)) constraints_.add_line(i);
   constraints_.close();
 
-  dealii::Vector<double> unit_load(model_.n_dofs());
+  patch_load_ = model_.make_vector();
   if (problem_.pulse)
     model_.add_pressure(
-        1.0, [patch](const detail::Point&, dealii::types::boundary_id b) { return b == patch ? 1.0 : 0.0; }, unit_load);
-  patch_load_ = detail::to_trilinos(unit_load, model_);
+        1.0, [patch](const detail::Point&, dealii::types::boundary_id b) { return b == patch ? 1.0 : 0.0; },
+        patch_load_);
 
-  dealii::Vector<double> v_initial(model_.n_dofs());
-  for (dealii::types::global_dof_index i = 0; i < model_.n_dofs(); ++i)
-    if (model_.dof_component(i) == 1 && !constraints_.is_constrained(i)) v_initial[i] = -problem_.v0;
-  v_ = detail::to_trilinos(v_initial, model_);
-  for (const auto& gauge : problem_.gauges) {
-    auto probe = model_.probe(detail::Point(gauge.x, gauge.y));
-    if (!probe) throw FemError("gauge " + gauge.name + " is outside the FEM body");
-    gauges_.push_back(std::move(*probe));
+  v_ = model_.make_vector();
+  for (const auto i : model_.owned())
+    if (model_.dof_component(i) == 1 && !constraints_.is_constrained(i)) v_[i] = -problem_.v0;
+  v_.compress(dealii::VectorOperation::insert);
+  std::vector<detail::Point> points;
+  for (const auto& gauge : problem_.gauges) points.emplace_back(gauge.x, gauge.y);
+  auto probes = model_.probes(points);
+  for (std::size_t g = 0; g < probes.size(); ++g) {
+    if (!probes[g]) throw FemError("gauge " + problem_.gauges[g].name + " is outside the FEM body");
+    gauges_.push_back(std::move(*probes[g]));
   }
   for (auto* x : {&u_, &a_, &w_, &rhs_, &u_new_, &scratch_}) *x = model_.make_vector();
+  for (auto* x : {&ghosted_u_, &ghosted_v_}) *x = model_.make_ghosted();
 }
 
 /// K and the consistent M with the constraints condensed, and the effective matrix of the
-/// step, K + c_u M, factorised.
+/// step, K + c_u M.
 void NewmarkRun::assemble_system() {
   model_.make_sparse_matrix(stiffness_, constraints_);
   model_.make_sparse_matrix(mass_, constraints_);
   model_.assemble(constraints_, stiffness_, &mass_);
-  detail::Matrix effective;
-  effective.copy_from(stiffness_);
-  effective.add(c_u_, mass_);
-  solver_ = std::make_unique<detail::DirectSolver>(effective);
-  result_.stats.solver = detail::DirectSolver::name;
+  effective_.copy_from(stiffness_);
+  effective_.add(c_u_, mass_);
+}
+
+/// The solver of the effective matrix: factorised, or its AMG set up, once.
+void NewmarkRun::build_solver() {
+  const PhaseTimer timing(result_.setup.solver);
+  solver_ = detail::make_step_solver(problem_.step_solver, effective_, model_, problem_.cg);
+  result_.stats.solver = solver_->name();
 }
 
 /// (K + c_u M) u_new = M (c_u u + c_v v + c_a a) + f(t).
@@ -179,7 +195,7 @@ void NewmarkRun::assemble_rhs(double t) {
 
 void NewmarkRun::solve() {
   const PhaseTimer timing(result_.times.solve);
-  solver_->solve(u_new_, rhs_);
+  result_.stats.iterations += solver_->solve(u_new_, rhs_);
 }
 
 /// a_new = c_u (u_new - u) - c_v v - c_a a;  v += dt ((1 - gamma) a + gamma a_new).
@@ -201,11 +217,11 @@ void NewmarkRun::update() {
 void NewmarkRun::record(double t) {
   {
     const PhaseTimer timing(result_.times.gauges);
-    const auto displacement = detail::to_serial(u_);
+    ghosted_u_ = u_;
+    const auto stresses = model_.stresses(ghosted_u_, gauges_);
     for (std::size_t g = 0; g < gauges_.size(); ++g) {
       const auto& gauge = problem_.gauges[g];
-      const Stress2 s = model_.stress_at(displacement, gauges_[g]);
-      result_.gauges.push_back({t, g, make_sample(gauge.x, gauge.y, s)});
+      result_.gauges.push_back({t, g, make_sample(gauge.x, gauge.y, stresses[g])});
     }
   }
   const PhaseTimer timing(result_.times.energy);
@@ -214,11 +230,12 @@ void NewmarkRun::record(double t) {
 
 void NewmarkRun::snapshot(double t) {
   const PhaseTimer timing(result_.times.output);
-  char name[64];
-  std::snprintf(name, sizeof name, "vtk/snapshot_%06zu.vtu", result_.snapshots.size());
-  result_.snapshots.push_back({t, name});
-  const auto displacement = detail::to_serial(u_), velocity = detail::to_serial(v_);
-  model_.write_vtu(displacement, problem_.snapshot_directory / name, &velocity);
+  char stem[64];
+  std::snprintf(stem, sizeof stem, "snapshot_%06zu", result_.snapshots.size());
+  ghosted_u_ = u_;
+  ghosted_v_ = v_;
+  const auto record = model_.write_vtu(ghosted_u_, problem_.snapshot_directory / "vtk", stem, &ghosted_v_);
+  result_.snapshots.push_back({t, "vtk/" + record});
   if (detail::is_root())
     common::write_whole_text(problem_.snapshot_directory / "run.pvd", pvd_document(result_.snapshots));
 }

@@ -2,8 +2,8 @@
 // Contact-free elastodynamics of a disc: the disc moves at v0 towards the plate and the impact
 // patch is held (u = 0) from t = 0, launching the impact waves; or, as an option, the disc loaded
 // by a prescribed pressure pulse on the patch. Newmark time stepping with a
-// selectable (beta, gamma); consistent mass; the effective matrix is built and factorised once
-// (sparse Cholesky, whole on every MPI rank like the mesh).
+// selectable (beta, gamma); consistent mass; the effective matrix is built once and factorised
+// once (sparse Cholesky on one rank, MUMPS distributed over several) or given an AMG once.
 
 #include <filesystem>
 #include <optional>
@@ -30,6 +30,18 @@ struct TractionPulse {
   double pressure(double t) const;
 };
 
+/// Linear solver of the effective matrix K + c_u M of the Newmark step.
+enum class StepSolverKind {
+  automatic,  // cholmod on one MPI rank, mumps on more
+  cholmod,    // sparse Cholesky (SuiteSparse), whole on every rank: gathers the matrix
+  mumps,      // sparse LDL^T (MUMPS through Trilinos Amesos), distributed like the matrix
+  cg_amg,     // CG + ML AMG, warm-started from the previous step, stopped at `cg`
+};
+
+// CG's stopping criterion for the Newmark step, |r| <= tol |b|: b = M (c_u u + ...) is large
+// beside the step's stress, so this is tighter than the static problem's 1e-10.
+constexpr double kStepCgTolerance = 1e-13;
+
 struct GaugePoint {
   std::string name;
   double x = 0.0;  // m
@@ -50,9 +62,12 @@ struct DynamicProblem {
   double end_time = 20e-6;        // s
   double output_interval = 1e-7;  // s between gauge/energy samples
   std::vector<GaugePoint> gauges;
+  StepSolverKind step_solver = StepSolverKind::automatic;
+  SolverSettings cg{kStepCgTolerance, SolverSettings{}.max_iterations};  // for cg_amg
   /// With a directory and an interval > 0: VTU snapshots (displacement, velocity, sxx, syy,
-  /// txy, s1, s3) at t = 0 and every interval, as vtk/snapshot_NNNNNN.vtu, listed in run.pvd
-  /// (rewritten after each snapshot). Files are written whole, by rank 0.
+  /// txy, s1, s3) at t = 0 and every interval: the record vtk/snapshot_NNNNNN.pvtu with one
+  /// piece per MPI rank, vtk/snapshot_NNNNNN.RANK.vtu (each rank writes its own cells), the
+  /// records listed in run.pvd (rewritten after each snapshot by rank 0). Files are written whole.
   std::filesystem::path snapshot_directory;
   double snapshot_interval = 0.0;  // s
 };
@@ -71,7 +86,14 @@ struct EnergyRecord {
 
 struct SnapshotRecord {
   double t = 0.0;    // s
-  std::string file;  // relative to the snapshot directory
+  std::string file;  // the .pvtu record, relative to the snapshot directory
+};
+
+/// Wall time of the setup by phase (s); their sum is RunStats::setup_seconds.
+struct SetupTimes {
+  double model = 0.0;     // triangulation (whole mesh built and partitioned on every rank), DoFs, geometry
+  double assembly = 0.0;  // constraints, gauges located, K and M assembled
+  double solver = 0.0;    // factorisation or AMG set-up of K + c_u M
 };
 
 /// Wall time of the time loop by phase, summed over all steps (s): where a step's time goes.
@@ -89,6 +111,7 @@ struct DynamicResult {
   std::vector<SnapshotRecord> snapshots;
   std::vector<EnergyRecord> energy;
   RunStats stats;
+  SetupTimes setup;
   StepTimes times;
   int steps = 0;
 };

@@ -46,7 +46,7 @@ struct RunStats {
   std::size_t cells = 0;
   std::size_t dofs = 0;
   std::string solver;          // the linear solver used
-  int iterations = 0;          // CG iterations (static; the dynamic problem solves directly)
+  int iterations = 0;          // CG iterations (dynamic: summed over the steps; 0 if direct)
   double setup_seconds = 0.0;  // mesh, dofs, assembly, AMG
   double solve_seconds = 0.0;  // CG (+ time loop)
 };

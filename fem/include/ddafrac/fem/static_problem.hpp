@@ -48,6 +48,9 @@ class StaticSolution {
   StaticSolution& operator=(StaticSolution&&) noexcept;
   ~StaticSolution();
 
+  // Under MPI every sampling call is collective: every rank calls it with the same points
+  // (the rank whose cell holds a point evaluates it; every rank gets the answer).
+
   /// Stress at a point of the body (throws FemError outside it).
   StressSample stress_at(double x, double y) const;
   /// Up to n >= 2 samples from (x0, y0) to (x1, y1), both ends included; points outside the
@@ -58,8 +61,9 @@ class StaticSolution {
   std::array<double, 2> boundary_force(const std::string& group) const;
   /// Resultant of the applied pressure on a boundary group (N per unit thickness).
   std::array<double, 2> applied_force(const std::string& group) const;
-  /// ParaView file with displacement, sxx, syy, txy, s1, s3 (written whole).
-  void write_vtu(const std::filesystem::path& path) const;
+  /// ParaView files with displacement, sxx, syy, txy, s1, s3: the record DIR/STEM.pvtu and,
+  /// beside it, one piece per MPI rank, DIR/STEM.RANK.vtu (each written whole). Collective.
+  void write_vtu(const std::filesystem::path& record) const;
   const RunStats& stats() const;
 
   struct Impl;
