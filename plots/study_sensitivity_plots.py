@@ -41,6 +41,8 @@ CENTRE_GAUGE = "centre"  # the Brazilian scenes' gauge at the disc's centre
 GAUGE_CASE = "case04"  # the impact case the families vary
 # A measure whose relative change between meshes is at most this is taken as unchanged.
 UNCHANGED = 0.01
+# A measure whose values across a family differ by at most this (relative) is drawn as flat.
+FLAT_RANGE = 1e-9
 # A loading rate is quasi-static when its peak force is within this of the static run's.
 QUASI_STATIC_TOLERANCE = 0.02
 # The kinetic/strain ratio is read from this fraction of the time to the peak on (before it,
@@ -219,13 +221,19 @@ def gauge_peaks(h, run):
 
 
 def draw_measures(runs, x, xlabel, logx, title, path, save):
-    figure, axes = plt.subplots(2, 4, figsize=(15, 7))
+    figure, axes = plt.subplots(2, 4, figsize=(15, 8))
     xs = [x(r) for r in runs]
     for axis, (label, f) in zip(axes.flat, MEASURES):
         ys = [f(r) for r in runs]
         points = [(a, b) for a, b in zip(xs, ys) if b is not None]
         if points:
             axis.plot(*zip(*points), "o-")
+            axis.ticklabel_format(axis="y", useOffset=False)
+            values = [b for _, b in points]
+            if max(values) - min(values) <= FLAT_RANGE * max(1.0, abs(max(values))):
+                axis.set_ylim(min(values) - 1.0, max(values) + 1.0)  # a flat line, not round-off
+        else:
+            axis.text(0.5, 0.5, "not reached in any run", ha="center", va="center", transform=axis.transAxes)
         axis.set_title(label, fontsize="medium")
         axis.set_xlabel(xlabel)
         if logx:
@@ -233,6 +241,7 @@ def draw_measures(runs, x, xlabel, logx, title, path, save):
         axis.grid(alpha=0.3)
     axes.flat[-1].axis("off")
     figure.suptitle(title)
+    figure.tight_layout()
     save(figure, path)
 
 
@@ -255,7 +264,9 @@ def mesh_section(h, runs, figures, save):
 
 
 def first_crack(h, run):
-    """(type, distance from the disc's centre / its radius, time) of a run's first crack, or None."""
+    """(type, distance from the disc's centre / its radius, time) of a run's first crack, or None.
+    Brazilian runs give the time as the platen's travel (speed × time), which static mode's
+    pseudo-time shares with the dynamic runs."""
     path = os.path.join(run["dir"], "cracks.csv")
     cracks = h.read_columns(path) if os.path.exists(path) else {}
     diameter = run["scene"].get("geometry", {}).get("diameter")
@@ -278,13 +289,13 @@ def centre_sigma1_to_peak(h, run):
 
 def brazilian_table(h, runs, parameter, value, form="{:.3g}"):
     md = (f"| case | {parameter} | peak force (kN/m) | platen travel at peak (mm) | k | σt indirect (MPa) "
-          "| centre σ1 to the peak (MPa) | σt of the joints (MPa) | ratio | first crack: kind, r/R, µs "
+          "| centre σ1 to the peak (MPa) | σt of the joints (MPa) | ratio | first crack: kind, r/R, travel (mm) "
           "| kinetic/strain to the peak: median / max (%) | cracks T / S "
           "| crack length (mm) | wall (s) |\n|---|--:|--:|--:|--:|--:|--:|--:|--:|---|--:|--:|--:|--:|\n")
     for r in runs:
         peak, strength, first = peak_force(r), indirect_strength(r), first_crack(h, r)
         median, largest = kinetic_ratio_to_peak(h, r)
-        first_text = f"{first[0]}, {first[1]:.2f}, {first[2] * MICROSECONDS:.0f}" if first else "–"
+        first_text = (f"{first[0]}, {first[1]:.2f}, {first[2] * platen_speed(r) * MILLIMETRES:.3f}" if first else "–")
         md += (f"| {r['case']} | {cell(value(r), form)} | {cell(scaled(peak[0], KILONEWTONS) if peak else None, '{:.1f}')}"
                f" | {cell(scaled(peak[2], MILLIMETRES) if peak else None, '{:.3f}')}"
                f" | {cell(strength[1] if strength else None, '{:.4f}')}"
