@@ -147,10 +147,11 @@ def measure_table(runs, parameter, value, form="{:.3g}"):
     return md
 
 
-def observed_orders(runs):
-    """Per measure, the relative change between successive meshes and, from the last three, the
-    observed order p in the block size h ∝ blocks^(-1/2): p = ln(|f2 - f1| / |f3 - f2|) / ln(h1/h2)."""
-    md = "| measure | relative change between successive meshes | observed order p | verdict |\n|---|---|--:|---|\n"
+def observed_orders(runs, step, what):
+    """Per measure, the relative change between successive runs (ordered coarse to fine) and,
+    from the last three, the observed order p in the step h (`step` of a run: the block size
+    ∝ blocks^(-1/2), or dt_max): p = ln(|f2 - f1| / |f3 - f2|) / ln(h1/h2)."""
+    md = f"| measure | relative change between successive {what} | observed order p | verdict |\n|---|---|--:|---|\n"
     for label, f in MEASURES:
         values = [f(r) for r in runs]
         if any(v is None for v in values) or len(values) < 2:
@@ -160,7 +161,7 @@ def observed_orders(runs):
         order, verdict = None, "two meshes only"
         if len(values) >= 3:
             d1, d2 = abs(values[-2] - values[-3]), abs(values[-1] - values[-2])
-            ratio = math.sqrt(runs[-2]["blocks"] / runs[-3]["blocks"])
+            ratio = step(runs[-3]) / step(runs[-2])
             if max(changes[-2:]) <= UNCHANGED:
                 verdict = f"unchanged (within {UNCHANGED * PERCENT:g}%)"
             elif changes[-1] <= UNCHANGED:
@@ -251,7 +252,7 @@ def mesh_section(h, runs, figures, save):
     md = "## Mesh\n\n"
     if impact:
         md += "Case 4:\n\n" + measure_table(impact, "blocks", lambda r: r["blocks"], "{:.0f}") + "\n"
-        md += observed_orders(impact) + "\n"
+        md += observed_orders(impact, lambda r: r["blocks"] ** -0.5, "meshes") + "\n"
         draw_measures(impact, lambda r: r["blocks"], "blocks", True, "case 4 against its mesh",
                       os.path.join(figures, "mesh.png"), save)
     if discs:
@@ -332,6 +333,7 @@ def penalty_section(h, runs, figures, save):
 def timestep_section(runs, figures, save):
     runs = sorted(runs, key=lambda r: -r["dt_max"])
     md = "## Time step\n\n" + measure_table(runs, "dt_max (s)", lambda r: r["dt_max"]) + "\n"
+    md += observed_orders(runs, lambda r: r["dt_max"], "time steps") + "\n"
     draw_measures(runs, lambda r: r["dt_max"], "dt_max (s)", True, "case 4 against the time step",
                   os.path.join(figures, "timestep.png"), save)
     return md
