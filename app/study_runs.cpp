@@ -96,6 +96,13 @@ void print_status(const StudyKind& kind, const StudyArguments& args) {
   for (const StudyCase& c : cases) fmt::print("{}", status_line(c, running, name_width, series_width));
 }
 
+/// study.csv and study.md, each written whole.
+void write_tables(const StudyKind& kind, const fs::path& out, const std::vector<StudyCase>& cases,
+                  const std::vector<std::string>& overrides, const std::vector<std::string>& figures) {
+  common::write_whole_text(out / "study.csv", study_csv(cases, out));
+  common::write_whole_text(out / "study.md", kind.markdown(cases, overrides, figures));
+}
+
 void run_study(const StudyKind& kind, const StudyArguments& args) {
   const CaseRanks ranks;  // under mpirun or srun, the cases are spread over the ranks
   const fs::path out(args.out);
@@ -123,13 +130,13 @@ void run_study(const StudyKind& kind, const StudyArguments& args) {
   }
   // The tables after every case: an interrupted study leaves those of the cases done so far.
   run_cases(runs, {kThreadsPerRun, parallel, args.checkpoint_every, overrides,
-                   [&] { kind.write_tables(cases, overrides, {}); }, &ranks});
+                   [&] { write_tables(kind, out, cases, overrides, {}); }, &ranks});
   if (!ranks.is_root()) return;
   for (std::size_t k = 0; k < cases.size(); ++k) cases[k].run = runs[k];
-  kind.write_tables(cases, overrides, {});
+  write_tables(kind, out, cases, overrides, {});
   std::fflush(stdout);  // before the plotting script prints to the same terminal
   draw_figures({kind.figures_command, out.string()});
-  kind.write_tables(cases, overrides, figure_names(out));
+  write_tables(kind, out, cases, overrides, figure_names(out));
   write_study_file(out, overrides, 0);
   fmt::print("wrote {}\n", (out / "study.md").string());
 
@@ -138,6 +145,17 @@ void run_study(const StudyKind& kind, const StudyArguments& args) {
 }
 
 }  // namespace
+
+std::string study_csv(const std::vector<StudyCase>& cases, const fs::path& out) {
+  std::string csv = "case,series,run_dir,exit_reason\n";
+  for (const StudyCase& c : cases) {
+    const json s = read_summary(c.run.run_dir);
+    const std::string reason = !s.is_discarded() && s.contains("exit") ? s["exit"].value("reason", "") : "";
+    csv += fmt::format("{},{},{},{}\n", c.run.scene.name, c.series,
+                       csv_field(fs::relative(c.run.run_dir, out).string()), reason);
+  }
+  return csv;
+}
 
 std::vector<StudyCase> choose_cases(std::vector<StudyCase> all, const std::vector<std::string>& names,
                                     const std::string& command) {

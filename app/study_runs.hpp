@@ -33,17 +33,21 @@ struct StudyArguments {
 };
 
 /// A study as the shared code sees it: its command name ("study source"), how to load its
-/// cases with given --set values, how to write its tables and which figures to draw.
+/// cases with given --set values, its study.md and which figures to draw. The shared run writes
+/// study.md and study.csv (what the figures read) after every case and at the end.
 struct StudyKind {
   std::string command;          // e.g. "study source", for messages
   std::string figures_command;  // the plotting script's subcommand, e.g. "study-source"
   std::function<std::vector<StudyCase>(const std::vector<std::string>& overrides)> load;
-  /// Writes the study's documents into `out` (called after every case and at the end, with the
-  /// figures drawn so far, relative to `out`).
-  std::function<void(const std::vector<StudyCase>& cases, const std::vector<std::string>& overrides,
-                     const std::vector<std::string>& figures)>
-      write_tables;
+  /// study.md of the cases with the --set values and the figures drawn so far (relative to the
+  /// study directory).
+  std::function<std::string(const std::vector<StudyCase>& cases, const std::vector<std::string>& overrides,
+                            const std::vector<std::string>& figures)>
+      markdown;
 };
+
+/// study.csv: case, series, run_dir (relative to `out`), state of its summary.json.
+std::string study_csv(const std::vector<StudyCase>& cases, const std::filesystem::path& out);
 
 /// Adds --out (default `default_out`), --resume, --status, --set (its help: `set_help`),
 /// --parallel, --cases and --checkpoint-every, and a callback that prints the status or runs

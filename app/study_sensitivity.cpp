@@ -65,7 +65,6 @@ struct Variant {
   std::string name;
   fs::path base;
   std::vector<std::string> families;
-  int blocks = 0;
   std::map<std::string, std::map<std::string, std::string>> tables;  // table -> key -> TOML value
 };
 
@@ -122,17 +121,16 @@ class VariantBuilder {
  public:
   VariantBuilder(const fs::path& scenes, int reference_blocks, fs::path out) : scenes_(scenes), out_(std::move(out)) {
     const int case_blocks = load(scenes_ / kImpactCase).mesh.target_blocks;
-    reference_blocks_ = reference_blocks > 0 ? reference_blocks : case_blocks;
-    scale_ = static_cast<double>(reference_blocks_) / case_blocks;
+    scale_ = reference_blocks > 0 ? static_cast<double>(reference_blocks) / case_blocks : 1.0;
   }
 
   /// A scene of scenes/ at its size scaled like case 4's (--blocks), named after it.
   Variant at_scale(const char* scene, double fraction = 1.0) const {
     Variant v;
     v.base = scenes_ / scene;
-    v.blocks = static_cast<int>(std::lround(load(v.base).mesh.target_blocks * scale_ * fraction));
-    v.name = fmt::format("{}-{}", family_stem(v.base), v.blocks);
-    v.tables["mesh"]["blocks"] = std::to_string(v.blocks);
+    const long blocks = std::lround(load(v.base).mesh.target_blocks * scale_ * fraction);
+    v.name = fmt::format("{}-{}", family_stem(v.base), blocks);
+    v.tables["mesh"]["blocks"] = std::to_string(blocks);
     return v;
   }
 
@@ -218,7 +216,6 @@ class VariantBuilder {
 
  private:
   fs::path scenes_, out_;
-  int reference_blocks_ = 0;
   double scale_ = 1.0;
 };
 
@@ -323,10 +320,9 @@ void register_study_sensitivity(CLI::App& study) {
         kind.load = [args, out](const std::vector<std::string>& overrides) {
           return load_study(*args, overrides, out);
         };
-        kind.write_tables = [args, out](const std::vector<StudyCase>& cases, const std::vector<std::string>& overrides,
-                                        const std::vector<std::string>& figures) {
-          common::write_whole_text(out / "study.csv", study_csv(cases, out));
-          common::write_whole_text(out / "study.md", study_markdown(cases, *args, overrides, figures));
+        kind.markdown = [args](const std::vector<StudyCase>& cases, const std::vector<std::string>& overrides,
+                               const std::vector<std::string>& figures) {
+          return study_markdown(cases, *args, overrides, figures);
         };
         return kind;
       });

@@ -9,7 +9,6 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "ddafrac/common/whole_file.hpp"
 #include "study_runs.hpp"
 #include "study_source_report.hpp"
 
@@ -69,11 +68,7 @@ void register_study_source(CLI::App& study) {
         kind.command = "study source";
         kind.figures_command = "study-source";
         kind.load = [out](const std::vector<std::string>& overrides) { return load_study(overrides, out); };
-        kind.write_tables = [out](const std::vector<StudyCase>& cases, const std::vector<std::string>& overrides,
-                                  const std::vector<std::string>& figures) {
-          common::write_whole_text(out / "study.csv", study_csv(cases, out));
-          common::write_whole_text(out / "study.md", study_markdown(cases, overrides, figures));
-        };
+        kind.markdown = study_markdown;
         return kind;
       });
 }

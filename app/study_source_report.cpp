@@ -118,15 +118,4 @@ std::string study_markdown(const std::vector<StudyCase>& cases, const std::vecto
   return md;
 }
 
-std::string study_csv(const std::vector<StudyCase>& cases, const fs::path& out) {
-  std::string csv = "case,series,run_dir,exit_reason\n";
-  for (const StudyCase& c : cases) {
-    const json s = read_summary(c.run.run_dir);
-    const std::string reason = !s.is_discarded() && s.contains("exit") ? s["exit"].value("reason", "") : "";
-    csv += fmt::format("{},{},{},{}\n", c.run.scene.name, c.series,
-                       csv_field(fs::relative(c.run.run_dir, out).string()), reason);
-  }
-  return csv;
-}
-
 }  // namespace ddafrac::app

@@ -1,7 +1,6 @@
 #pragma once
-// The documents of `ddafrac study source`: study.md (one table row per case, read from each
-// run's summary.json) and study.csv (case, series and run directory: what the plotting script
-// reads to draw the series' figures).
+// The study.md of `ddafrac study source` (one table row per case, read from each run's
+// summary.json) and the case table `study sensitivity` shares.
 
 #include <filesystem>
 #include <string>
@@ -21,8 +20,5 @@ std::string case_table(const std::vector<StudyCase>& cases);
 /// through-going crack, peak force, energy-balance error, missed contacts, how it ended).
 std::string study_markdown(const std::vector<StudyCase>& cases, const std::vector<std::string>& overrides,
                            const std::vector<std::string>& figures);
-
-/// study.csv: case, series, run_dir (relative to `out`), state of its summary.json.
-std::string study_csv(const std::vector<StudyCase>& cases, const std::filesystem::path& out);
 
 }  // namespace ddafrac::app
