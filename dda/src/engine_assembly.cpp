@@ -11,6 +11,17 @@
 
 namespace ddafrac::dda {
 
+namespace {
+/// k += s·a·bᵀ, each entry as (s·a_i)·b_j — the same operations, in the same order, as Eigen's
+/// `k.noalias() += s * a * b.transpose()`, so the sums are bit for bit the same — written out
+/// so that the compiler inlines it: the assembly makes up to six such updates per contact, and
+/// Eigen's generic product loop stayed an out-of-line call.
+inline void add_outer_product(Mat6& k, double s, const Vec6& a, const Vec6& b) {
+  const Vec6 sa = s * a;
+  for (int j = 0; j < 6; ++j) k.col(j) += sa * b[j];
+}
+}  // namespace
+
 // Inertia, elasticity, initial stress, gravity, point loads and anchors: docs/design.md §3.
 void Engine::block_terms(double dt) {
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
@@ -95,8 +106,8 @@ void Engine::assemble(bool whole) {
       const Contact& c = cs[set_.block_contacts[m]];
       const Vec6& a = c.vblock == i ? c.e : c.g;
       const Vec6& b = c.vblock == i ? c.es : c.gs;
-      if (q.kn_eff != 0.0) k.noalias() += q.kn_eff * a * a.transpose();
-      if (q.ks_eff != 0.0) k.noalias() += q.ks_eff * b * b.transpose();
+      if (q.kn_eff != 0.0) add_outer_product(k, q.kn_eff, a, a);
+      if (q.ks_eff != 0.0) add_outer_product(k, q.ks_eff, b, b);
       f += q.fn_rhs * a + q.fs_rhs * b;
     }
     matrix_.diag[i] = k;
@@ -122,8 +133,8 @@ void Engine::assemble(bool whole) {
       const Vec6& nb = v_is_a ? c.g : c.e;
       const Vec6& sa = v_is_a ? c.es : c.gs;
       const Vec6& sb = v_is_a ? c.gs : c.es;
-      if (q.kn_eff != 0.0) k.noalias() += q.kn_eff * na * nb.transpose();
-      if (q.ks_eff != 0.0) k.noalias() += q.ks_eff * sa * sb.transpose();
+      if (q.kn_eff != 0.0) add_outer_product(k, q.kn_eff, na, nb);
+      if (q.ks_eff != 0.0) add_outer_product(k, q.ks_eff, sa, sb);
     }
     if (matrix_.off_nonzero[p] != (nonzero ? 1 : 0)) nonzero_pairs_changed = true;
     matrix_.off_nonzero[p] = nonzero ? 1 : 0;
