@@ -47,11 +47,26 @@ bool wedge_faces_edge(const View& w, Index v, double nx, double ny, double sin_t
 
 double angle_mod(double a) { return std::fmod(std::fmod(a, kTwoPi) + kTwoPi, kTwoPi); }
 
-/// Smallest angular gap between the wedges of two coincident vertices (0 if they overlap).
-double wedge_gap(const View& w, Index va, Index vb) {
-  const auto a = static_cast<std::size_t>(va), b = static_cast<std::size_t>(vb);
-  const double sa = w.w.wedge_start[a], oa = w.w.wedge_open[a];
-  const double sb = w.w.wedge_start[b], ob = w.w.wedge_open[b];
+/// Interior wedge of vertex v of a block as the angle interval [start, start + open), radians.
+/// Computed only for the few vertex pairs close enough to be a vertex-vertex contact (two
+/// atan2 per vertex and step were most of the per-vertex data otherwise).
+struct Wedge {
+  double start = 0.0, open = 0.0;
+};
+Wedge wedge_of(const View& w, Index block, Index v) {
+  const Index p = w.prev(block, v), q = w.next(block, v);
+  const double ax = w.x(p) - w.x(v), ay = w.y(p) - w.y(v);
+  const double bx = w.x(q) - w.x(v), by = w.y(q) - w.y(v);
+  const double start = std::atan2(by, bx);
+  return {start, std::fmod(std::atan2(ay, ax) - start + 2.0 * kTwoPi, kTwoPi)};
+}
+
+/// Smallest angular gap between the wedges of two coincident vertices, va of block a and vb of
+/// block b (0 if they overlap).
+double wedge_gap(const View& w, Index a, Index va, Index b, Index vb) {
+  const Wedge wa = wedge_of(w, a, va), wb = wedge_of(w, b, vb);
+  const double sa = wa.start, oa = wa.open;
+  const double sb = wb.start, ob = wb.open;
   const double g1 = angle_mod(sb - (sa + oa));
   const double g2 = angle_mod(sa - (sb + ob));
   if (oa + ob + g1 + g2 > kTwoPi + 1e-9) return 0.0;
@@ -228,7 +243,7 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
       if (!shared_node) {
         const double dx = w.x(v) - w.x(u), dy = w.y(v) - w.y(u);
         if (dx * dx + dy * dy > vv2 || node_copy(v) || node_copy(u)) continue;
-        if (wedge_gap(w, v, u) > prm.vv_max_gap_angle) continue;
+        if (wedge_gap(w, a, v, b, u) > prm.vv_max_gap_angle) continue;
       }
       // A closed corner keeps the reference line it had while the angle rules allow it: switching
       // to another line of the same corner while overlapping would make the gap, and the energy
@@ -251,10 +266,10 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
 }
 
 /// Per-vertex data of the narrow phase: unit directions of the two adjacent edges, convexity,
-/// the interior wedge as an angle interval, and the outward normal and length of the next edge.
+/// and the outward normal and length of the next edge.
 void vertex_data(const BlockSystem& s, DetectionWorkspace& w) {
   const std::size_t nv = s.vertex_count();
-  for (auto* v : {&w.ax, &w.ay, &w.bx, &w.by, &w.wedge_start, &w.wedge_open, &w.enx, &w.eny, &w.elen}) v->resize(nv);
+  for (auto* v : {&w.ax, &w.ay, &w.bx, &w.by, &w.enx, &w.eny, &w.elen}) v->resize(nv);
   w.convex.resize(nv);
   const auto nb = static_cast<std::int64_t>(s.block_count());
 #pragma omp parallel for schedule(static)
@@ -271,9 +286,6 @@ void vertex_data(const BlockSystem& s, DetectionWorkspace& w) {
       w.bx[v] = bx / lb;
       w.by[v] = by / lb;
       w.convex[v] = bx * ay - by * ax > 0.0;
-      const double start = std::atan2(by, bx);
-      w.wedge_start[v] = start;
-      w.wedge_open[v] = std::fmod(std::atan2(ay, ax) - start + 2.0 * kTwoPi, kTwoPi);
       w.enx[v] = by / lb;
       w.eny[v] = -bx / lb;
       w.elen[v] = lb;
@@ -460,11 +472,13 @@ bool may_touch(const View& w, Index a, Index b, double reach) {
 /// Largest distance any vertex has moved since the pair list was built.
 double largest_move_since_build(const BlockSystem& s, const DetectionWorkspace& work) {
   const auto nv = static_cast<std::int64_t>(s.vertex_count());
-  double moved = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : moved)
-  for (std::int64_t v = 0; v < nv; ++v)
-    moved = std::max(moved, std::hypot(s.vx[v] - work.built_x[v], s.vy[v] - work.built_y[v]));
-  return moved;
+  double moved2 = 0.0;  // m², squared: one square root instead of one per vertex
+#pragma omp parallel for schedule(static) reduction(max : moved2)
+  for (std::int64_t v = 0; v < nv; ++v) {
+    const double dx = s.vx[v] - work.built_x[v], dy = s.vy[v] - work.built_y[v];
+    moved2 = std::max(moved2, dx * dx + dy * dy);
+  }
+  return std::sqrt(moved2);
 }
 
 /// Adds to a partner list of block b the blocks after it joined to it by an intact virtual joint

@@ -138,9 +138,9 @@ struct DetectionWorkspace {
   std::vector<std::vector<Index>> pairs;  // pair list: per block, partner blocks > it, ascending
   std::vector<double> built_x, built_y;   // vertex positions when the pair list was built
   long pair_list_builds = 0;
-  // Per vertex: unit directions to the previous/next vertex, convexity, interior wedge
-  // [start, start + open) in radians, outward normal and length of the edge to the next vertex.
-  std::vector<double> ax, ay, bx, by, wedge_start, wedge_open, enx, eny, elen;
+  // Per vertex: unit directions to the previous/next vertex, convexity, outward normal and
+  // length of the edge to the next vertex.
+  std::vector<double> ax, ay, bx, by, enx, eny, elen;
   std::vector<char> convex;
   std::vector<Index> cell_offsets, cell_blocks;
   std::vector<std::vector<Index>> candidates;        // per block: partner blocks > it
