@@ -40,9 +40,9 @@ struct View {
 /// Angle rule: the wedge at vertex v lies on the outer side of an edge with outward unit normal
 /// (nx, ny), within the tolerance, and the vertex is convex (reflex vertices contact by edges).
 bool wedge_faces_edge(const View& w, Index v, double nx, double ny, double sin_tol) {
-  const auto k = static_cast<std::size_t>(v);
-  if (!w.w.convex[k]) return false;
-  return w.w.ax[k] * nx + w.w.ay[k] * ny >= -sin_tol && w.w.bx[k] * nx + w.w.by[k] * ny >= -sin_tol;
+  const VertexFrame& f = w.w.frames[static_cast<std::size_t>(v)];
+  if (!f.convex) return false;
+  return f.ax * nx + f.ay * ny >= -sin_tol && f.bx * nx + f.by * ny >= -sin_tol;
 }
 
 double angle_mod(double a) { return std::fmod(std::fmod(a, kTwoPi) + kTwoPi, kTwoPi); }
@@ -110,8 +110,8 @@ Contact make_contact(const View& w, const Candidate& cd) {
 
 /// Signed gap of vertex v against the edge starting at e0 (outward unit normal precomputed).
 double gap(const View& w, Index v, Index e0) {
-  const auto k = static_cast<std::size_t>(e0);
-  return (w.x(v) - w.x(e0)) * w.w.enx[k] + (w.y(v) - w.y(e0)) * w.w.eny[k];
+  const VertexFrame& f = w.w.frames[static_cast<std::size_t>(e0)];
+  return (w.x(v) - w.x(e0)) * f.enx + (w.y(v) - w.y(e0)) * f.eny;
 }
 
 /// Is (px, py) inside the polygon of block q (convex or concave)?
@@ -139,12 +139,12 @@ void offer(Candidate& slot, const Candidate& c) {
   if (!slot.valid || std::abs(c.d) < std::abs(slot.d)) slot = c;
 }
 
-/// Did the previous step hold vertex v of vblock closed against the edge of eblock that starts
-/// at e0, as a vertex-vertex contact?
-bool was_closed_against(const View& w, Index vblock, Index v, Index eblock, Index e0) {
+/// The first vertex of the edge of eblock against which the previous step held vertex v of
+/// vblock closed as a vertex-vertex contact, or -1 (no such closed corner).
+Index closed_corner_edge(const View& w, Index vblock, Index v, Index eblock) {
   // The contact of v in the pair has v's block as its vertex block, so the edge is eblock's.
-  const Index m = w.w.previous_by_vertex.entry(v, vblock, eblock);
-  return m >= 0 && w.w.previous_by_vertex.closed_corner_edge[static_cast<std::size_t>(m)] == e0;
+  const ContactsByVertex::Entry* e = w.w.previous_by_vertex.entry(v, vblock, eblock);
+  return e ? e->closed_corner_edge : -1;
 }
 
 /// Narrow phase of one block pair a < b; appends at most one contact per vertex.
@@ -216,17 +216,17 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
       const double px = w.x(v), py = w.y(v);
       if (px < bx0 - depth || px > bx1 + depth || py < by0 - depth || py > by1 + depth) continue;
       for (Index e0 = s.begin(q); e0 < s.end(q); ++e0) {
-        const auto k = static_cast<std::size_t>(e0);
+        const VertexFrame& edge = ws.frames[static_cast<std::size_t>(e0)];
         const Index e1 = w.next(q, e0);
         const double rx = px - w.x(e0), ry = py - w.y(e0);
-        const double d = rx * ws.enx[k] + ry * ws.eny[k];
+        const double d = rx * edge.enx + ry * edge.eny;
         if (d > search || d < -depth) continue;
-        const double l = ws.elen[k];
-        const double along = -rx * ws.eny[k] + ry * ws.enx[k];  // (P - P2)·u with u = (-ny, nx)
+        const double l = edge.elen;
+        const double along = -rx * edge.eny + ry * edge.enx;  // (P - P2)·u with u = (-ny, nx)
         if (along < 0.0 || along > l) continue;
         const double sx = px - w.x(e1), sy = py - w.y(e1);
         if (rx * rx + ry * ry <= vv2 || sx * sx + sy * sy <= vv2) continue;
-        if (!wedge_faces_edge(w, v, ws.enx[k], ws.eny[k], sin_tol)) continue;
+        if (!wedge_faces_edge(w, v, edge.enx, edge.eny, sin_tol)) continue;
         // Behind an edge is a penetration only inside the block: a vertex outside a triangle
         // near one of its corners lies behind an edge too (loose fragments of a cracked mesh).
         if (d < 0.0 && !inside_block(w, q, px, py)) continue;
@@ -249,13 +249,14 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
       // to another line of the same corner while overlapping would make the gap, and the energy
       // of its spring, jump.
       const Index opts[4][4] = {{a, v, b, w.prev(b, u)}, {a, v, b, u}, {b, u, a, w.prev(a, v)}, {b, u, a, v}};
+      const Index closed_edge_v = closed_corner_edge(w, a, v, b), closed_edge_u = closed_corner_edge(w, b, u, a);
       Candidate chosen, kept;
       for (const auto& o : opts) {
-        const auto k = static_cast<std::size_t>(o[3]);
-        if (!wedge_faces_edge(w, o[1], ws.enx[k], ws.eny[k], sin_tol)) continue;
+        const VertexFrame& edge = ws.frames[static_cast<std::size_t>(o[3])];
+        if (!wedge_faces_edge(w, o[1], edge.enx, edge.eny, sin_tol)) continue;
         const Candidate option{true, true, gap(w, o[1], o[3]), o[0], o[1], o[2], o[3], shared_node};
         if (!chosen.valid || option.d > chosen.d) chosen = option;
-        if (was_closed_against(w, o[0], o[1], o[2], o[3])) kept = option;
+        if (o[3] == (o[1] == v ? closed_edge_v : closed_edge_u)) kept = option;
       }
       if (kept.valid) chosen = kept;
       if (chosen.valid) offer(slot_of(chosen.vblock, chosen.vertex), chosen);
@@ -268,9 +269,7 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
 /// Per-vertex data of the narrow phase: unit directions of the two adjacent edges, convexity,
 /// and the outward normal and length of the next edge.
 void vertex_data(const BlockSystem& s, DetectionWorkspace& w) {
-  const std::size_t nv = s.vertex_count();
-  for (auto* v : {&w.ax, &w.ay, &w.bx, &w.by, &w.enx, &w.eny, &w.elen}) v->resize(nv);
-  w.convex.resize(nv);
+  w.frames.resize(s.vertex_count());
   const auto nb = static_cast<std::int64_t>(s.block_count());
 #pragma omp parallel for schedule(static)
   for (std::int64_t b = 0; b < nb; ++b) {
@@ -281,14 +280,15 @@ void vertex_data(const BlockSystem& s, DetectionWorkspace& w) {
       const double ax = s.vx[p] - s.vx[v], ay = s.vy[p] - s.vy[v];
       const double bx = s.vx[q] - s.vx[v], by = s.vy[q] - s.vy[v];
       const double la = std::sqrt(ax * ax + ay * ay), lb = std::sqrt(bx * bx + by * by);
-      w.ax[v] = ax / la;
-      w.ay[v] = ay / la;
-      w.bx[v] = bx / lb;
-      w.by[v] = by / lb;
-      w.convex[v] = bx * ay - by * ax > 0.0;
-      w.enx[v] = by / lb;
-      w.eny[v] = -bx / lb;
-      w.elen[v] = lb;
+      VertexFrame& f = w.frames[static_cast<std::size_t>(v)];
+      f.ax = ax / la;
+      f.ay = ay / la;
+      f.bx = bx / lb;
+      f.by = by / lb;
+      f.convex = bx * ay - by * ax > 0.0;
+      f.enx = by / lb;
+      f.eny = -bx / lb;
+      f.elen = lb;
     }
   }
 }
@@ -299,37 +299,31 @@ void ContactsByVertex::build(const std::vector<Contact>& list, std::size_t verte
   const auto nc = static_cast<std::int64_t>(list.size());
   // The fields an entry needs, read from the records once, in list order and in parallel; the
   // serial passes below then walk these small arrays.
-  std::vector<Index> vertex(list.size()), pair_low(list.size()), pair_high(list.size()), corner_edge(list.size());
+  std::vector<Index> vertex(list.size());
+  std::vector<Entry> in_list_order(list.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < nc; ++k) {
     const Contact& c = list[k];
     vertex[k] = c.vertex;
-    pair_low[k] = c.pair_low();
-    pair_high[k] = c.pair_high();
-    corner_edge[k] = c.vertex_vertex && c.state != ContactState::Open ? c.edge0 : -1;
+    in_list_order[k] = {static_cast<Index>(k), c.pair_low(), c.pair_high(),
+                        c.vertex_vertex && c.state != ContactState::Open ? c.edge0 : -1};
   }
   offsets.assign(vertex_count + 1, 0);
   for (const Index v : vertex) ++offsets[static_cast<std::size_t>(v) + 1];
   for (std::size_t v = 0; v < vertex_count; ++v) offsets[v + 1] += offsets[v];
-  contacts.resize(list.size());
-  low.resize(list.size());
-  high.resize(list.size());
-  closed_corner_edge.resize(list.size());
+  entries.resize(list.size());
   std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
-  for (std::int64_t k = 0; k < nc; ++k) {
-    const auto m = static_cast<std::size_t>(fill[static_cast<std::size_t>(vertex[k])]++);
-    contacts[m] = static_cast<Index>(k);
-    low[m] = pair_low[k];
-    high[m] = pair_high[k];
-    closed_corner_edge[m] = corner_edge[k];
-  }
+  for (std::int64_t k = 0; k < nc; ++k)
+    entries[static_cast<std::size_t>(fill[static_cast<std::size_t>(vertex[k])]++)] = in_list_order[k];
 }
 
-Index ContactsByVertex::entry(Index v, Index p, Index q) const {
+const ContactsByVertex::Entry* ContactsByVertex::entry(Index v, Index p, Index q) const {
   const Index lo = std::min(p, q), hi = std::max(p, q);
-  for (Index m = offsets[static_cast<std::size_t>(v)]; m < offsets[static_cast<std::size_t>(v) + 1]; ++m)
-    if (low[static_cast<std::size_t>(m)] == lo && high[static_cast<std::size_t>(m)] == hi) return m;
-  return -1;
+  for (Index m = offsets[static_cast<std::size_t>(v)]; m < offsets[static_cast<std::size_t>(v) + 1]; ++m) {
+    const Entry& e = entries[static_cast<std::size_t>(m)];
+    if (e.low == lo && e.high == hi) return &e;
+  }
+  return nullptr;
 }
 
 namespace {

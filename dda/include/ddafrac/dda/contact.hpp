@@ -111,24 +111,36 @@ struct ContactCandidate {
 /// The contacts of a list grouped by vertex (CSR): the contact of a vertex in a block pair is
 /// found among the vertex's own few contacts instead of by a search through the whole list.
 struct ContactsByVertex {
-  std::vector<Index> offsets;   // per vertex, into `contacts`
-  std::vector<Index> contacts;  // list indices, ascending for each vertex
-  // Per entry, so that a search reads these and not the contacts: the block pair, and for a
-  // closed vertex-vertex contact the first vertex of its reference edge (-1 otherwise).
-  std::vector<Index> low, high, closed_corner_edge;
+  /// What a search reads instead of the contact (the entries of a vertex share a cache line or
+  /// two): its index in the list, its block pair, and for a closed vertex-vertex contact the
+  /// first vertex of its reference edge (-1 otherwise).
+  struct Entry {
+    Index contact = -1, low = -1, high = -1, closed_corner_edge = -1;
+  };
+  std::vector<Index> offsets;   // per vertex, into `entries`
+  std::vector<Entry> entries;   // ascending list index for each vertex
   void build(const std::vector<Contact>& list, std::size_t vertex_count);
-  /// Entry (index into `contacts`) of vertex v's contact in the block pair {p, q}, or -1.
-  Index entry(Index v, Index p, Index q) const;
+  /// Entry of vertex v's contact in the block pair {p, q}, or null.
+  const Entry* entry(Index v, Index p, Index q) const;
   /// Index in the list of the contact of vertex v in the block pair {p, q}, or -1.
   Index find(Index v, Index p, Index q) const {
-    const Index m = entry(v, p, q);
-    return m < 0 ? -1 : contacts[static_cast<std::size_t>(m)];
+    const Entry* e = entry(v, p, q);
+    return e ? e->contact : -1;
   }
 };
 
 /// Axis-aligned boxes of the blocks, grown by a margin.
 struct BlockBoxes {
   std::vector<double> xmin, xmax, ymin, ymax;
+};
+
+/// What the narrow phase needs of a vertex, in one cache line: unit directions to the previous
+/// and next vertex, the outward unit normal and length of the edge to the next vertex, and
+/// whether the vertex is convex.
+struct alignas(64) VertexFrame {
+  double ax = 0.0, ay = 0.0, bx = 0.0, by = 0.0;
+  double enx = 0.0, eny = 0.0, elen = 0.0;  // elen in m
+  bool convex = false;
 };
 
 /// Detection state kept between steps: the pair list and scratch space (no reallocation).
@@ -138,10 +150,7 @@ struct DetectionWorkspace {
   std::vector<std::vector<Index>> pairs;  // pair list: per block, partner blocks > it, ascending
   std::vector<double> built_x, built_y;   // vertex positions when the pair list was built
   long pair_list_builds = 0;
-  // Per vertex: unit directions to the previous/next vertex, convexity, outward normal and
-  // length of the edge to the next vertex.
-  std::vector<double> ax, ay, bx, by, enx, eny, elen;
-  std::vector<char> convex;
+  std::vector<VertexFrame> frames;  // per vertex
   std::vector<Index> cell_offsets, cell_blocks;
   std::vector<std::vector<Index>> candidates;        // per block: partner blocks > it
   std::vector<std::vector<ContactCandidate>> found;  // per block: contacts of its pairs
