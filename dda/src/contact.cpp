@@ -559,20 +559,21 @@ namespace {
 /// swapped, or null: the angle rules may pick the other reference line of a vertex-vertex
 /// contact as the blocks move, and a vertex-vertex contact whose vertices drift apart becomes a
 /// vertex-edge contact of whichever vertex entered the other block (and back).
+/// c's corner is its vertex and the end of its edge nearer to it: only that end's contact can be
+/// the swapped one. Both ends will not do: where two blocks share a whole edge (a broken virtual
+/// joint), each block's vertices are the ends of the other's edge, so the contact at the far
+/// corner would match too and be carried twice, while the one at c's own corner vanished.
 const Contact* swapped_corner(const std::vector<Contact>& previous, const ContactsByVertex& by_vertex,
-                              const Contact& c) {
-  // Its vertex is one of c's edge ends; of two matches the first in list order (lower vertex).
-  const Contact* found = nullptr;
-  for (const Index v : {std::min(c.edge0, c.edge1), std::max(c.edge0, c.edge1)}) {
-    const Index k = by_vertex.find(v, c.vblock, c.eblock);
-    if (k < 0) continue;
-    const Contact& p = previous[static_cast<std::size_t>(k)];
-    if ((p.vertex_vertex || c.vertex_vertex) && (c.vertex == p.edge0 || c.vertex == p.edge1)) {
-      found = &p;
-      break;
-    }
-  }
-  return found;
+                              const Contact& c, const BlockSystem& blocks) {
+  const auto distance2 = [&](Index a, Index b) {
+    const double dx = blocks.vx[a] - blocks.vx[b], dy = blocks.vy[a] - blocks.vy[b];
+    return dx * dx + dy * dy;
+  };
+  const Index end = distance2(c.vertex, c.edge1) < distance2(c.vertex, c.edge0) ? c.edge1 : c.edge0;
+  const Index k = by_vertex.find(end, c.vblock, c.eblock);
+  if (k < 0) return nullptr;
+  const Contact& p = previous[static_cast<std::size_t>(k)];
+  return (p.vertex_vertex || c.vertex_vertex) && (c.vertex == p.edge0 || c.vertex == p.edge1) ? &p : nullptr;
 }
 
 }  // namespace
@@ -592,7 +593,7 @@ std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& pre
     c.state = touching || c.bonded(joints) ? ContactState::Locked : ContactState::Open;
     const Index same = previous_by_vertex.find(c.vertex, c.vblock, c.eblock);
     const Contact* p = same >= 0 ? &previous[static_cast<std::size_t>(same)] : nullptr;
-    const bool swapped = !p && (p = swapped_corner(previous, previous_by_vertex, c)) != nullptr;
+    const bool swapped = !p && (p = swapped_corner(previous, previous_by_vertex, c, blocks)) != nullptr;
     if (!p) continue;
     c.carried = true;
 #pragma omp atomic write
