@@ -30,12 +30,12 @@ length_band=1.5
 # The FEM's centre σxx over 2P/(πD) is 0.978 for the study's 10° flats; the formula gives 0.990
 # (it maps the flats onto arcs): 1.2% apart. Tolerance 2%.
 factor_tolerance=0.02
-# The stiff case (kn = E) shatters: ~200 cracks by 400 µs, against 8 at the study's kn. Its
-# balance error reaches 3.6% during the burst (75-150 µs), in jumps at steps where a broken
-# joint's springs are booked as lost: a leak of the ledger in mass fragmentation, open in
-# docs/results/sensitivity.md. Bound 5% until it is found, so that a worse leak still fails
-# (stiffening the virtual joints alone gave 2400%).
-stiff_balance_tolerance=0.05
+# The stiff case (kn = E) shatters: ~230 cracks by 400 µs, against 8 at the study's kn. Its
+# ledger closes within 0.09% through the burst of breaks (75-285 µs); then two contacts that
+# detection finds 10-12 µm deep (at ~288 µs, the run's missed_contacts) add 1.46%: 1.54% at
+# 400 µs, a gap in detection, open in docs/results/sensitivity.md. Bound 2%: the corner leak
+# fixed before (3.6% by 400 µs) fails it, and so would one more missed contact of that depth.
+stiff_balance_tolerance=0.02
 set_args=(--set "analysis.end_time=$end_time")
 cases=case04-700,case04-1400,case04-1400-kn1E,case04-1400-dt5e-08
 
