@@ -48,8 +48,7 @@ bool wedge_faces_edge(const View& w, Index v, double nx, double ny, double sin_t
 double angle_mod(double a) { return std::fmod(std::fmod(a, kTwoPi) + kTwoPi, kTwoPi); }
 
 /// Interior wedge of vertex v of a block as the angle interval [start, start + open), radians.
-/// Computed only for the few vertex pairs close enough to be a vertex-vertex contact (two
-/// atan2 per vertex and step were most of the per-vertex data otherwise).
+/// Computed on demand: only vertex pairs inside the vertex-vertex radius need it.
 struct Wedge {
   double start = 0.0, open = 0.0;
 };
@@ -65,11 +64,9 @@ Wedge wedge_of(const View& w, Index block, Index v) {
 /// block b (0 if they overlap).
 double wedge_gap(const View& w, Index a, Index va, Index b, Index vb) {
   const Wedge wa = wedge_of(w, a, va), wb = wedge_of(w, b, vb);
-  const double sa = wa.start, oa = wa.open;
-  const double sb = wb.start, ob = wb.open;
-  const double g1 = angle_mod(sb - (sa + oa));
-  const double g2 = angle_mod(sa - (sb + ob));
-  if (oa + ob + g1 + g2 > kTwoPi + 1e-9) return 0.0;
+  const double g1 = angle_mod(wb.start - (wa.start + wa.open));
+  const double g2 = angle_mod(wa.start - (wb.start + wb.open));
+  if (wa.open + wb.open + g1 + g2 > kTwoPi + 1e-9) return 0.0;
   return std::min(g1, g2);
 }
 

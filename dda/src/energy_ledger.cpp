@@ -17,9 +17,8 @@ StepEnergy& StepEnergy::operator+=(const StepEnergy& o) {
 
 double EnergyLedger::balance_error() const {
   const double supplied = initial + work();
-  const double residual = stored.stored() + dissipated() - supplied;
   const double scale = supplied > 0.0 ? supplied : std::max(stored.stored(), dissipated());
-  return scale > 0.0 ? residual / scale : 0.0;
+  return scale > 0.0 ? residual() / scale : 0.0;
 }
 
 namespace {

@@ -60,6 +60,8 @@ struct EnergyLedger {
   StepEnergy total;      // cumulative since t = 0
   double work() const { return total.work_gravity + total.work_loads + total.work_supports; }
   double dissipated() const { return total.friction + total.joint_breaks + total.numerical; }
+  /// (stored + dissipated) − (initial + work), J/m: positive = energy created.
+  double residual() const { return stored.stored() + dissipated() - (initial + work()); }
   /// ((stored + dissipated) − (initial + work)) / (initial + work): positive = energy created.
   /// With nothing to compare against (initial + work ≤ 0) it is relative to the largest of the
   /// stored and dissipated energies.
