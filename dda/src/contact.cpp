@@ -561,12 +561,9 @@ namespace {
 /// joint), each block's vertices are the ends of the other's edge, so the contact at the far
 /// corner would match too and be carried twice, while the one at c's own corner vanished.
 const Contact* swapped_corner(const std::vector<Contact>& previous, const ContactsByVertex& by_vertex,
-                              const Contact& c, const BlockSystem& blocks) {
-  const auto distance2 = [&](Index a, Index b) {
-    const double dx = blocks.vx[a] - blocks.vx[b], dy = blocks.vy[a] - blocks.vy[b];
-    return dx * dx + dy * dy;
-  };
-  const Index end = distance2(c.vertex, c.edge1) < distance2(c.vertex, c.edge0) ? c.edge1 : c.edge0;
+                              const Contact& c) {
+  // The vertex's projection on the edge (ref_t, fresh from detection) says which end is nearer.
+  const Index end = c.ref_t > 0.5 ? c.edge1 : c.edge0;
   const Index k = by_vertex.find(end, c.vblock, c.eblock);
   if (k < 0) return nullptr;
   const Contact& p = previous[static_cast<std::size_t>(k)];
@@ -590,7 +587,7 @@ std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& pre
     c.state = touching || c.bonded(joints) ? ContactState::Locked : ContactState::Open;
     const Index same = previous_by_vertex.find(c.vertex, c.vblock, c.eblock);
     const Contact* p = same >= 0 ? &previous[static_cast<std::size_t>(same)] : nullptr;
-    const bool swapped = !p && (p = swapped_corner(previous, previous_by_vertex, c, blocks)) != nullptr;
+    const bool swapped = !p && (p = swapped_corner(previous, previous_by_vertex, c)) != nullptr;
     if (!p) continue;
     c.carried = true;
 #pragma omp atomic write
