@@ -28,6 +28,11 @@ constexpr double kVertexVertexEdgeFraction = 0.1;
 /// pushed deeper than the search distance by a hard impact must keep its contact.
 constexpr double kPenetrationEdgeFraction = 0.3;
 
+/// What the narrow phase of one block pair has made of a vertex.
+constexpr char kFree = 0;           // judged by the geometric rules
+constexpr char kOnIntactJoint = 1;  // held by an intact virtual joint of the pair: no other contact
+constexpr char kInCornerPair = 2;   // one of two corners reduced to one vertex-vertex contact
+
 struct View {
   const BlockSystem& s;
   const DetectionWorkspace& w;
@@ -146,7 +151,7 @@ Index closed_corner_edge(const View& w, Index vblock, Index v, Index eblock) {
 
 /// Narrow phase of one block pair a < b; appends at most one contact per vertex.
 void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, std::vector<Candidate>& best,
-                  std::vector<char>& skip, std::vector<Candidate>& out) {
+                  std::vector<char>& role, std::vector<Candidate>& out) {
   const BlockSystem& s = w.s;
   const DetectionWorkspace& ws = w.w;
   const Index na = s.end(a) - s.begin(a);
@@ -166,7 +171,10 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
   // toward its tensile strength opens wider than the search distance). Their vertices, on both
   // sides, take no other contact of this pair; once the joint breaks they are detected like any
   // vertex (a broken joint behaves as if it had never been bonded).
-  skip.assign(static_cast<std::size_t>(na + nb), 0);
+  role.assign(static_cast<std::size_t>(na + nb), kFree);
+  auto role_of = [&](Index block, Index v) -> char& {
+    return role[static_cast<std::size_t>(block == a ? v - s.begin(a) : na + v - s.begin(b))];
+  };
   if (!s.joints.empty()) {
     for (Index k = s.joint_offsets[a]; k < s.joint_offsets[a + 1]; ++k) {
       const Joint& j = s.joints[static_cast<std::size_t>(s.joint_of_block[k])];
@@ -179,16 +187,13 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
       if (ua < 0 || ub < 0 || j.vertex_a < 0 || j.vertex_b < 0) continue;
       const Index e0 = w.next(b, ua) == ub ? ua : ub;  // b's CCW edge along the joint
       for (Index v : {j.vertex_a, j.vertex_b}) {
-        skip[static_cast<std::size_t>(v - s.begin(a))] = 1;
+        role_of(a, v) = kOnIntactJoint;
         slot_of(a, v) = Candidate{true, false, gap(w, v, e0), a, v, b, e0};
       }
-      skip[static_cast<std::size_t>(na + ua - s.begin(b))] = 1;
-      skip[static_cast<std::size_t>(na + ub - s.begin(b))] = 1;
+      role_of(b, ua) = role_of(b, ub) = kOnIntactJoint;
     }
   }
-  auto skipped = [&](Index block, Index v) {
-    return skip[static_cast<std::size_t>(block == a ? v - s.begin(a) : na + v - s.begin(b))] != 0;
-  };
+  auto skipped = [&](Index block, Index v) { return role_of(block, v) == kOnIntactJoint; };
   // Blocks of one body that meet only at a mesh node (triangles of a fan with others between
   // them) are paired there topologically: the compliance of the joints around the node lets the
   // two copies of the node drift apart and overlap, by more than the search distance on soft
@@ -256,7 +261,32 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
         if (o[3] == (o[1] == v ? closed_edge_v : closed_edge_u)) kept = option;
       }
       if (kept.valid) chosen = kept;
-      if (chosen.valid) offer(slot_of(chosen.vblock, chosen.vertex), chosen);
+      if (!chosen.valid) continue;
+      offer(slot_of(chosen.vblock, chosen.vertex), chosen);
+      role_of(a, v) = role_of(b, u) = kInCornerPair;
+    }
+  }
+  // A vertex inside the other block with no contact of this pair, and not one of two corners
+  // whose one contact went to the other: the rules above judge a corner by the angles of its
+  // wedge and by its distance to the other block's corners, and some deep corners pass neither
+  // (a wedge dipping more than the tolerance behind every edge it lies behind; a tip driven into
+  // a corner, inside the capture radius where no vertex-edge contact forms and too far in angle
+  // for a vertex-vertex one). Matter cannot overlap unseen, so such a vertex is held by the edge
+  // it lies least deep behind (for a convex block its projection falls on that edge).
+  for (int side = 0; side < 2; ++side) {
+    const Index p = side == 0 ? a : b;  // vertex block
+    const Index q = side == 0 ? b : a;  // block it may lie inside
+    const double bx0 = ws.boxes.xmin[q], bx1 = ws.boxes.xmax[q], by0 = ws.boxes.ymin[q], by1 = ws.boxes.ymax[q];
+    for (Index v = s.begin(p); v < s.end(p); ++v) {
+      if (role_of(p, v) != kFree || node_copy(v) || slot_of(p, v).valid) continue;
+      const double px = w.x(v), py = w.y(v);
+      if (px < bx0 || px > bx1 || py < by0 || py > by1 || !inside_block(w, q, px, py)) continue;
+      Candidate least_deep;
+      for (Index e0 = s.begin(q); e0 < s.end(q); ++e0) {
+        const double d = gap(w, v, e0);
+        if (!least_deep.valid || d > least_deep.d) least_deep = Candidate{true, false, d, p, v, q, e0};
+      }
+      slot_of(p, v) = least_deep;
     }
   }
   for (const Candidate& c : best)
@@ -527,7 +557,7 @@ void detect_contacts(const BlockSystem& s, const DetectionParams& prm, Detection
 #pragma omp parallel
   {
     std::vector<Candidate> best;
-    std::vector<char> skip;
+    std::vector<char> role;
 #pragma omp for schedule(dynamic, 32)
     for (std::int64_t b = 0; b < ni; ++b) {
       // Pairs of the list whose boxes (grown by half the search distance) overlap now, and the
@@ -539,7 +569,7 @@ void detect_contacts(const BlockSystem& s, const DetectionParams& prm, Detection
       add_joint_partners(s, static_cast<Index>(b), cand);
       auto& found = work.found[b];
       found.clear();
-      for (Index o : cand) narrow_phase(w, static_cast<Index>(b), o, prm, best, skip, found);
+      for (Index o : cand) narrow_phase(w, static_cast<Index>(b), o, prm, best, role, found);
     }
   }
   std::vector<std::size_t> start(n + 1, 0);

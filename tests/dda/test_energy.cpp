@@ -120,13 +120,14 @@ Engine slide_off_engine(const SlideOff& p, double allowed_displacement) {
 // -7.85° by 5 s in the version of this case). Released as soon as it would pull, the
 // block tips as the rigid-body reference does. The contact period (11 ms) is about the scene's
 // step (10 ms), so the DDA's first-order time error is large at the scene's allowed step
-// displacement (0.5 m: 13° behind); it falls with the step (measured: 12.9°, 2.8°, 0.18° at
-// 0.5, 0.05, 0.005 m), so the test asserts that convergence.
+// displacement; it falls with the step (measured: 2.7°, 2.1°, 0.095° at 0.5, 0.05, 0.005 m;
+// 12.9°, 2.8°, 0.18° before a corner inside the other block always had a contact), so the test
+// asserts that convergence.
 BOOST_AUTO_TEST_CASE(block_sliding_off_an_edge_tips_like_a_rigid_body) {
   const SlideOff p;
   const double reference = rigid_slide_off_rotation(p);
   std::vector<double> error;
-  for (double allowed : {0.5, 0.05}) {
+  for (double allowed : {0.5, 0.05, 0.005}) {
     Engine e = slide_off_engine(p, allowed);
     while (e.time() < p.end_time * (1.0 - 1e-12)) e.step(p.end_time - e.time());
     const double got = block_angle(e, 0);
@@ -139,7 +140,7 @@ BOOST_AUTO_TEST_CASE(block_sliding_off_an_edge_tips_like_a_rigid_body) {
   BOOST_TEST(reference / kDegree < -45.0);
   BOOST_TEST(error[0] <= 15.0 * kDegree);
   BOOST_TEST(error[1] <= 4.0 * kDegree);
-  BOOST_TEST(error[1] <= 0.3 * error[0]);
+  BOOST_TEST(error[2] <= 0.3 * error[1]);
 }
 
 namespace {
@@ -364,4 +365,49 @@ BOOST_AUTO_TEST_CASE(a_spinning_block_keeps_its_area_and_energy) {
   BOOST_TEST(area_error <= 1e-12);
   BOOST_TEST(kinetic_error <= 1e-12);
   BOOST_TEST(e.ledger().largest_balance_error <= 1e-12);
+}
+
+// A sharp corner driven tip first into a square block's corner: the two wedges point at each
+// other, so they are far apart in angle (about 2 rad, no vertex-vertex contact), and the tip
+// arrives within the vertex-vertex capture radius of the square's corner, where no vertex-edge
+// contact is formed. Once inside the square it must be held all the same: the tip never lies
+// deeper inside than one step's allowed displacement (measured geometrically, as for the fan
+// above), no contact is found already that deep, and the ledger closes within 1% (a contact
+// first found deep adds ½·kn·d² at once; before a vertex inside another block always had a
+// contact the tip reached 3.3 µm unseen and the balance error was 724%; measured now: 0.23 and
+// 0.19 µm, 0.33% and 0.066%). Two approach directions, so that neither is symmetric about the
+// square's diagonal; frictionless, the tip glances off along one face.
+BOOST_AUTO_TEST_CASE(a_tip_driven_into_a_corner_is_held_as_soon_as_it_is_inside) {
+  const double tip_half_angle = 20.0 * kDegree, side = 5e-3, speed = 1.0;  // rad, m, m/s
+  const double kn = 1e10;                                                  // N/m
+  for (const double heading : {40.0 * kDegree, 55.0 * kDegree}) {
+    auto s = basic_scene(scene::Mode::Dynamic, 1e-7, kn, {0.0, 0.0});
+    s.bodies = {body("striker"), body("wall", scene::Motion::Fixed)};
+    meshes::Mesh m;
+    // The striker's tip 20 µm short of the square's corner (the origin) along its heading.
+    const double gap = 20e-6, back = heading + common::kPi;
+    const meshes::Point tip{-gap * std::cos(heading), -gap * std::sin(heading)};
+    auto ray = [&](double a) { return meshes::Point{tip.x + side * std::cos(a), tip.y + side * std::sin(a)}; };
+    add_polygon(m, "striker", {tip, ray(back - tip_half_angle), ray(back + tip_half_angle)});
+    add_rectangle(m, "wall", 0.0, 0.0, side, side);
+    EngineOptions o;
+    o.allowed_displacement = 2e-6;  // m: a search distance of 5 µm, the capture radius the same
+    Engine e(s, m, o);
+    BlockSystem& b = e.blocks();
+    b.velocity[0][kU] = speed * std::cos(heading);
+    b.velocity[0][kV] = speed * std::sin(heading);
+    double deepest = 0.0;
+    for (int k = 0; k < 600; ++k) {  // 60 µs: 20 to arrive, about 4 in contact
+      e.step();
+      deepest = std::max(deepest, deepest_vertex_inside(b, 0, 1));
+    }
+    const EnergyLedger& l = e.ledger();
+    BOOST_TEST_MESSAGE("tip first at " << heading / kDegree << " deg: deepest " << deepest << " m (allowed "
+                                       << e.allowed_displacement() << "), stored " << l.stored.stored() << " of " << l.initial
+                                       << " J/m, largest balance error " << l.largest_balance_error << ", missed "
+                                       << e.statistics().missed_contacts);
+    BOOST_TEST(deepest <= e.allowed_displacement());
+    BOOST_TEST(e.statistics().missed_contacts == 0);
+    BOOST_TEST(l.largest_balance_error <= 0.01);
+  }
 }
