@@ -266,27 +266,38 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
       role_of(a, v) = role_of(b, u) = kInCornerPair;
     }
   }
-  // A vertex inside the other block with no contact of this pair, and not one of two corners
-  // whose one contact went to the other: the rules above judge a corner by the angles of its
-  // wedge and by its distance to the other block's corners, and some deep corners pass neither
-  // (a wedge dipping more than the tolerance behind every edge it lies behind; a tip driven into
-  // a corner, inside the capture radius where no vertex-edge contact forms and too far in angle
-  // for a vertex-vertex one). Matter cannot overlap unseen, so such a vertex is held by the edge
-  // it lies least deep behind (for a convex block its projection falls on that edge).
+  // A vertex inside the other block, not one of two corners whose one contact went to the other,
+  // is held on its entrance line whatever the angle rules: the edge of its contact of this pair
+  // the step before if it had one (switching line while it overlaps would make its gap, and the
+  // energy of its spring, jump), else the edge it lies least deep behind (for a convex block its
+  // projection falls on that edge) unless the rules above gave a shallower one. The rules judge a
+  // corner by the angles of its wedge and by its distance to the other block's corners, and some
+  // corners that enter pass none of them (a wedge dipping more than the tolerance behind the edge
+  // it crosses; a tip driven into a corner, inside the capture radius where no vertex-edge contact
+  // forms and too far in angle for a vertex-vertex one) or only against an edge far behind
+  // (entering a triangle by 0.1 µm through one edge, a vertex was paired with another 80 µm away,
+  // whose spring released ½·kn·d² at once).
   for (int side = 0; side < 2; ++side) {
     const Index p = side == 0 ? a : b;  // vertex block
     const Index q = side == 0 ? b : a;  // block it may lie inside
     const double bx0 = ws.boxes.xmin[q], bx1 = ws.boxes.xmax[q], by0 = ws.boxes.ymin[q], by1 = ws.boxes.ymax[q];
     for (Index v = s.begin(p); v < s.end(p); ++v) {
-      if (role_of(p, v) != kFree || node_copy(v) || slot_of(p, v).valid) continue;
+      if (role_of(p, v) != kFree || node_copy(v)) continue;
+      Candidate& held = slot_of(p, v);
+      const ContactsByVertex::Entry* before = ws.previous_by_vertex.entry(v, p, q);
+      if (held.valid && before != nullptr && before->edge == held.e0) continue;  // the same line
       const double px = w.x(v), py = w.y(v);
       if (px < bx0 || px > bx1 || py < by0 || py > by1 || !inside_block(w, q, px, py)) continue;
+      if (before != nullptr) {
+        held = Candidate{true, false, gap(w, v, before->edge), p, v, q, before->edge};
+        continue;
+      }
       Candidate least_deep;
       for (Index e0 = s.begin(q); e0 < s.end(q); ++e0) {
         const double d = gap(w, v, e0);
         if (!least_deep.valid || d > least_deep.d) least_deep = Candidate{true, false, d, p, v, q, e0};
       }
-      slot_of(p, v) = least_deep;
+      if (!held.valid || held.d < least_deep.d) held = least_deep;
     }
   }
   for (const Candidate& c : best)
@@ -332,7 +343,7 @@ void ContactsByVertex::build(const std::vector<Contact>& list, std::size_t verte
   for (std::int64_t k = 0; k < nc; ++k) {
     const Contact& c = list[k];
     vertex[k] = c.vertex;
-    in_list_order[k] = {static_cast<Index>(k), c.pair_low(), c.pair_high(),
+    in_list_order[k] = {static_cast<Index>(k), c.pair_low(), c.pair_high(), c.edge0,
                         c.vertex_vertex && c.state != ContactState::Open ? c.edge0 : -1};
   }
   offsets.assign(vertex_count + 1, 0);

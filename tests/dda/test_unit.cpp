@@ -6,6 +6,7 @@
 #include <cmath>
 #include <set>
 
+#include "ddafrac/common/angles.hpp"
 #include "ddafrac/dda/contact_mechanics.hpp"
 #include "ddafrac/dda/drive.hpp"
 #include "ddafrac/dda/engine.hpp"
@@ -145,6 +146,39 @@ BOOST_AUTO_TEST_CASE(glued_disc_contacts_are_two_per_joint_and_one_per_shared_no
   BOOST_TEST(bonded == 2 * e.blocks().joints.size());
   BOOST_TEST(node_contacts > e.blocks().joints.size() / 2);
   BOOST_TEST(node_pairs.size() == node_contacts);
+}
+
+// A corner that enters a block through one face is held on that face. The wedge of the
+// striker's corner dips 5° behind the wall's top face (beyond the 3° the angle rule allows), so
+// the vertex-edge rule pairs it only with the wall's right face, 100 µm away behind it; the
+// corner lies 0.1 µm behind the top face, its entrance line, and its contact must be there
+// (paired with the right face, its spring would hold ½·kn·(100 µm)² that no work put in).
+BOOST_AUTO_TEST_CASE(a_corner_entering_through_one_face_is_held_on_that_face) {
+  constexpr double kSide = 10e-3, kInset = 0.1e-3, kDepth = 0.1e-6, kArm = 3e-3;  // m
+  constexpr double kDip = 5.0 * common::kRadiansPerDegree, kRise = 60.0 * common::kRadiansPerDegree;  // rad
+  const meshes::Point corner{kSide - kInset, -kDepth};
+  meshes::Mesh m;
+  testing::add_polygon(m, "striker",
+                       {corner,
+                        {corner.x + kArm * std::cos(kDip), corner.y - kArm * std::sin(kDip)},
+                        {corner.x + kArm * std::cos(kRise), corner.y + kArm * std::sin(kRise)}});
+  testing::add_rectangle(m, "wall", 0.0, -kSide, kSide, 0.0);
+  auto s = testing::basic_scene(scene::Mode::Dynamic, 1e-7, 1e10, {0, 0});
+  s.bodies = {testing::body("striker"), testing::body("wall", scene::Motion::Fixed)};
+  EngineOptions o;
+  o.allowed_displacement = 2e-6;  // m: a search distance of 5 µm, well short of the 100 µm
+  Engine e(s, m, o);
+  e.step();
+  const BlockSystem& b = e.blocks();
+  const Contact* held = nullptr;
+  for (const Contact& c : e.contacts().contacts)  // the striker's first vertex is the corner
+    if (c.vertex == b.begin(0)) held = &c;
+  BOOST_TEST_REQUIRE(held != nullptr);
+  BOOST_TEST_MESSAGE("corner held at gap " << held->d0 << " m on the edge from (" << b.vx[held->edge0] << ", "
+                                           << b.vy[held->edge0] << ")");
+  BOOST_TEST(std::abs(b.vy[held->edge0]) < kDepth);  // the top face
+  BOOST_TEST(std::abs(b.vy[held->edge1]) < kDepth);
+  BOOST_TEST(held->d0 == -kDepth, boost::test_tools::tolerance(1e-6));
 }
 
 /// A disc hitting the ground at 20 m/s with virtual joints at 5% of their strength: it cracks

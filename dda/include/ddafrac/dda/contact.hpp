@@ -112,10 +112,10 @@ struct ContactCandidate {
 /// found among the vertex's own few contacts instead of by a search through the whole list.
 struct ContactsByVertex {
   /// What a search reads instead of the contact (the entries of a vertex share a cache line or
-  /// two): its index in the list, its block pair, and for a closed vertex-vertex contact the
-  /// first vertex of its reference edge (-1 otherwise).
+  /// two): its index in the list, its block pair, the first vertex of its reference edge, and
+  /// that vertex again for a closed vertex-vertex contact (-1 otherwise).
   struct Entry {
-    Index contact = -1, low = -1, high = -1, closed_corner_edge = -1;
+    Index contact = -1, low = -1, high = -1, edge = -1, closed_corner_edge = -1;
   };
   std::vector<Index> offsets;   // per vertex, into `entries`
   std::vector<Entry> entries;   // ascending list index for each vertex
