@@ -283,13 +283,12 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
     const double bx0 = ws.boxes.xmin[q], bx1 = ws.boxes.xmax[q], by0 = ws.boxes.ymin[q], by1 = ws.boxes.ymax[q];
     for (Index v = s.begin(p); v < s.end(p); ++v) {
       if (role_of(p, v) != kFree || node_copy(v)) continue;
-      Candidate& held = slot_of(p, v);
-      const ContactsByVertex::Entry* before = ws.previous_by_vertex.entry(v, p, q);
-      if (held.valid && before != nullptr && before->edge == held.e0) continue;  // the same line
       const double px = w.x(v), py = w.y(v);
       if (px < bx0 || px > bx1 || py < by0 || py > by1 || !inside_block(w, q, px, py)) continue;
-      if (before != nullptr) {
-        held = Candidate{true, false, gap(w, v, before->edge), p, v, q, before->edge};
+      Candidate& held = slot_of(p, v);
+      if (const ContactsByVertex::Entry* before = ws.previous_by_vertex.entry(v, p, q)) {
+        if (!held.valid || held.e0 != before->edge)
+          held = Candidate{true, false, gap(w, v, before->edge), p, v, q, before->edge};
         continue;
       }
       Candidate least_deep;

@@ -160,7 +160,8 @@ struct DetectionWorkspace {
 /// Finds all contacts (identity and geometry only; state is transferred afterwards; the rules:
 /// docs/design.md §4.1). The
 /// previous step's contacts (sorted, as returned) only decide which reference line a closed
-/// vertex-vertex corner keeps; work.previous_by_vertex is left indexing them for
+/// vertex-vertex corner, or a vertex inside the other block, keeps; work.previous_by_vertex is
+/// left indexing them for
 /// transfer_contact_state. Deterministic: the output is sorted by (low block, high block,
 /// vertex) whatever the threads.
 /// `found` is overwritten; its storage is reused (pass the list of the step before last).
