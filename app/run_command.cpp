@@ -319,9 +319,9 @@ void run_run(const RunArguments& given) {
   if (st.missed_contacts > 0)
     fmt::print(stderr,
                "warning: {} contact(s) were first detected already deeper than one step's allowed displacement "
-               "(deepest {:.3g} m, allowed {:.3g} m): their springs released energy at once. Mostly triangles that "
-               "share only a mesh node and overlap through the compliance of the joints around it (see "
-               "missed_contacts in summary.json and the stability study, docs/results/stability.md)\n",
+               "(deepest {:.3g} m, allowed {:.3g} m): their springs released energy at once. One known source: when "
+               "a virtual joint fails in shear, the vertices of its second block are first detected at the "
+               "joint's compression (see missed_contacts in summary.json and docs/results/study_full_size.md)\n",
                st.missed_contacts, st.deepest_missed, engine->allowed_displacement());
   if (st.initial_overlaps > 0)
     fmt::print(stderr,
