@@ -146,7 +146,7 @@ void offer(Candidate& slot, const Candidate& c) {
 Index closed_corner_edge(const View& w, Index vblock, Index v, Index eblock) {
   // The contact of v in the pair has v's block as its vertex block, so the edge is eblock's.
   const ContactsByVertex::Entry* e = w.w.previous_by_vertex.entry(v, vblock, eblock);
-  return e ? e->closed_corner_edge : -1;
+  return e && e->closed_corner ? e->edge : -1;
 }
 
 /// Narrow phase of one block pair a < b; appends at most one contact per vertex.
@@ -343,7 +343,7 @@ void ContactsByVertex::build(const std::vector<Contact>& list, std::size_t verte
     const Contact& c = list[k];
     vertex[k] = c.vertex;
     in_list_order[k] = {static_cast<Index>(k), c.pair_low(), c.pair_high(), c.edge0,
-                        c.vertex_vertex && c.state != ContactState::Open ? c.edge0 : -1};
+                        c.vertex_vertex && c.state != ContactState::Open};
   }
   offsets.assign(vertex_count + 1, 0);
   for (const Index v : vertex) ++offsets[static_cast<std::size_t>(v) + 1];

@@ -113,9 +113,10 @@ struct ContactCandidate {
 struct ContactsByVertex {
   /// What a search reads instead of the contact (the entries of a vertex share a cache line or
   /// two): its index in the list, its block pair, the first vertex of its reference edge, and
-  /// that vertex again for a closed vertex-vertex contact (-1 otherwise).
+  /// whether it is a closed vertex-vertex contact.
   struct Entry {
-    Index contact = -1, low = -1, high = -1, edge = -1, closed_corner_edge = -1;
+    Index contact = -1, low = -1, high = -1, edge = -1;
+    bool closed_corner = false;
   };
   std::vector<Index> offsets;   // per vertex, into `entries`
   std::vector<Entry> entries;   // ascending list index for each vertex
