@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -159,7 +160,10 @@ pid_t start_case(const CaseRun& c, const CaseRunSettings& settings, const std::s
   // loses only its case, and under MPI the rank goes on. Spawning costs milliseconds against a
   // case's seconds to hours. The child gets no MPI launcher variables, so that it never takes
   // itself for this rank.
-  const pid_t pid = spawn_process(run_arguments(c, settings), log, environment_outside_mpi());
+  // It stops (resumably) if this process ends first, so a killed sweep leaves no run behind.
+  std::vector<std::string> argv = run_arguments(c, settings);
+  argv.insert(argv.end(), {"--stop-with-parent", std::to_string(::getpid())});
+  const pid_t pid = spawn_process(argv, log, environment_outside_mpi());
   fmt::print("{} {} ({}){}\n", c.start == Start::FromCheckpoint ? "resumed " : "started ", c.scene.name,
              c.scene_file.string(), where);
   std::fflush(stdout);

@@ -4,6 +4,7 @@
 
 #include <fmt/core.h>
 #include <omp.h>
+#include <sys/prctl.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -56,6 +57,16 @@ class StopSignalGuard {
   void (*previous_interrupt_)(int) = SIG_DFL;
   void (*previous_terminate_)(int) = SIG_DFL;
 };
+
+/// A run started by a sweep or a study stops as on SIGTERM (checkpoint, valid files) when the
+/// process that started it ends, however it ends: a killed study leaves no run behind that still
+/// writes into its folder, and `--resume` continues the stopped ones. Linux asks the kernel for
+/// the signal; a parent that ended before that request stops the run at once.
+void stop_when_parent_ends(long parent) {
+  if (parent == 0) return;
+  ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+  if (static_cast<long>(::getppid()) != parent) stop_signal.store(SIGTERM);
+}
 
 /// Wall seconds the thread governor watches the machine before a run, and between re-measures.
 constexpr double kGovernorFirstSample = 0.2;
@@ -126,6 +137,7 @@ struct RunArguments {
   bool no_vtk = false;
   bool no_figures = false;
   double energy_tolerance = dda::kDefaultEnergyBalanceTolerance;
+  long parent = 0;  // process whose end stops the run as SIGTERM does (0: none)
 };
 
 std::string eta_text(double seconds) {
@@ -302,6 +314,7 @@ void run_run(const RunArguments& given) {
   dda::RunResult result;
   try {
     StopSignalGuard guard;
+    stop_when_parent_ends(args.parent);
     ro.stop = &stop_signal;
     result = dda::run_simulation(*engine, ro);
   } catch (const dda::CheckpointError& e) {
@@ -401,6 +414,12 @@ void register_run_command(CLI::App& app) {
   command->add_option("--max-steps", args->max_steps, "stop after this many steps (0: run to the end time)")
       ->check(whole_number(0));
   command->add_flag("--no-vtk", args->no_vtk, "skip the VTU snapshots");
+  command
+      ->add_option("--stop-with-parent", args->parent,
+                   "stop as on SIGTERM (checkpoint, valid files) when process PID, which started this run, ends "
+                   "(sweeps and studies pass their own)")
+      ->type_name("PID")
+      ->check(whole_number(1));
   command
       ->add_option("--energy-tolerance", args->energy_tolerance,
                    "warn at the end when the energy balance error ever exceeded this fraction (default 0.01)")
