@@ -149,9 +149,67 @@ Index closed_corner_edge(const View& w, Index vblock, Index v, Index eblock) {
   return e && e->closed_corner ? e->edge : -1;
 }
 
-/// Narrow phase of one block pair a < b; appends at most one contact per vertex.
-void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, std::vector<Candidate>& best,
-                  std::vector<char>& role, std::vector<Candidate>& out) {
+/// Deepest penetration still paired between blocks a and b (kPenetrationEdgeFraction).
+double penetration_depth(const BlockSystem& s, double search, Index a, Index b) {
+  return std::max(search, kPenetrationEdgeFraction * std::min(s.min_edge[a], s.min_edge[b]));
+}
+
+/// Intact virtual joints of a pair a < b are topological, not geometric: both vertices of block a
+/// on the shared edge hold a contact with b's copy of the edge whatever the gap (a joint loaded
+/// toward its tensile strength opens wider than the search distance). Their vertices, on both
+/// sides, take no other contact of this pair; once the joint breaks they are detected like any
+/// vertex (a broken joint behaves as if it had never been bonded).
+/// Sets `role` (a's vertices, then b's) to kOnIntactJoint for those vertices and kFree for the
+/// others, calls hold(v, e0) for each of a's (b's CCW edge along the joint starts at e0), and
+/// returns how many intact joints the pair has.
+template <class Hold>
+int mark_intact_joints(const View& w, Index a, Index b, std::vector<char>& role, Hold&& hold) {
+  const BlockSystem& s = w.s;
+  const Index na = s.end(a) - s.begin(a);
+  role.assign(static_cast<std::size_t>(na + s.end(b) - s.begin(b)), kFree);
+  int intact = 0;
+  if (s.joints.empty()) return intact;
+  for (Index k = s.joint_offsets[a]; k < s.joint_offsets[a + 1]; ++k) {
+    const Joint& j = s.joints[static_cast<std::size_t>(s.joint_of_block[k])];
+    if (j.block_a != a || j.block_b != b || j.broken) continue;
+    Index ua = -1, ub = -1;  // b's vertices at node_a / node_b
+    for (Index u = s.begin(b); u < s.end(b); ++u) {
+      if (s.vertex_node[static_cast<std::size_t>(u)] == j.node_a) ua = u;
+      if (s.vertex_node[static_cast<std::size_t>(u)] == j.node_b) ub = u;
+    }
+    if (ua < 0 || ub < 0 || j.vertex_a < 0 || j.vertex_b < 0) continue;
+    ++intact;
+    const Index e0 = w.next(b, ua) == ub ? ua : ub;  // b's CCW edge along the joint
+    for (Index v : {j.vertex_a, j.vertex_b}) {
+      role[static_cast<std::size_t>(v - s.begin(a))] = kOnIntactJoint;
+      hold(v, e0);
+    }
+    role[static_cast<std::size_t>(na + ua - s.begin(b))] = role[static_cast<std::size_t>(na + ub - s.begin(b))] =
+        kOnIntactJoint;
+  }
+  return intact;
+}
+
+/// Blocks of one body that meet only at a mesh node (triangles of a fan with others between
+/// them) are paired there topologically: the compliance of the joints around the node lets the
+/// two copies of the node drift apart and overlap, by more than the search distance on soft
+/// joints, so the corner is judged as one vertex-vertex contact whatever the distance (up to
+/// the deepest penetration kept) and the angle between the wedges, never as a vertex against
+/// the far edge of the other wedge (docs/design.md §4.6).
+/// The copies (v of a, u of b) held so, or {-1, -1}.
+std::pair<Index, Index> held_node_copies(const View& w, Index a, Index b, double depth) {
+  const auto copies = node_only_neighbours(w.s, a, b);
+  if (copies.first < 0) return copies;
+  const double dx = w.x(copies.first) - w.x(copies.second), dy = w.y(copies.first) - w.y(copies.second);
+  return dx * dx + dy * dy > depth * depth ? std::pair<Index, Index>{-1, -1} : copies;
+}
+
+/// Narrow phase of one block pair a < b; appends at most one contact per vertex. `hint` is what
+/// the pair list knows of the pair (PairHint): a quiet pair whose topology has not changed since
+/// gets only its topological contacts, which are all the geometric rules would give it.
+/// Returns whether the pair was judged quiet.
+bool narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, const PairHint& hint,
+                  std::vector<Candidate>& best, std::vector<char>& role, std::vector<Candidate>& out) {
   const BlockSystem& s = w.s;
   const DetectionWorkspace& ws = w.w;
   const Index na = s.end(a) - s.begin(a);
@@ -161,55 +219,24 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
   const double vv = std::min(search, kVertexVertexEdgeFraction * std::min(s.min_edge[a], s.min_edge[b]));
   const double vv2 = vv * vv;
   const double sin_tol = std::sin(prm.angle_tolerance);
-  const double depth = std::max(search, kPenetrationEdgeFraction * std::min(s.min_edge[a], s.min_edge[b]));
+  const double depth = penetration_depth(s, search, a, b);
   auto slot_of = [&](Index block, Index v) -> Candidate& {
     return block == a ? best[static_cast<std::size_t>(v - s.begin(a))]
                       : best[static_cast<std::size_t>(na + v - s.begin(b))];
   };
-  // Intact virtual joints of the pair are topological, not geometric: both vertices of block a
-  // on the shared edge hold a contact with b's copy of the edge whatever the gap (a joint loaded
-  // toward its tensile strength opens wider than the search distance). Their vertices, on both
-  // sides, take no other contact of this pair; once the joint breaks they are detected like any
-  // vertex (a broken joint behaves as if it had never been bonded).
-  role.assign(static_cast<std::size_t>(na + nb), kFree);
   auto role_of = [&](Index block, Index v) -> char& {
     return role[static_cast<std::size_t>(block == a ? v - s.begin(a) : na + v - s.begin(b))];
   };
-  if (!s.joints.empty()) {
-    for (Index k = s.joint_offsets[a]; k < s.joint_offsets[a + 1]; ++k) {
-      const Joint& j = s.joints[static_cast<std::size_t>(s.joint_of_block[k])];
-      if (j.block_a != a || j.block_b != b || j.broken) continue;
-      Index ua = -1, ub = -1;  // b's vertices at node_a / node_b
-      for (Index u = s.begin(b); u < s.end(b); ++u) {
-        if (s.vertex_node[static_cast<std::size_t>(u)] == j.node_a) ua = u;
-        if (s.vertex_node[static_cast<std::size_t>(u)] == j.node_b) ub = u;
-      }
-      if (ua < 0 || ub < 0 || j.vertex_a < 0 || j.vertex_b < 0) continue;
-      const Index e0 = w.next(b, ua) == ub ? ua : ub;  // b's CCW edge along the joint
-      for (Index v : {j.vertex_a, j.vertex_b}) {
-        role_of(a, v) = kOnIntactJoint;
-        slot_of(a, v) = Candidate{true, false, gap(w, v, e0), a, v, b, e0};
-      }
-      role_of(b, ua) = role_of(b, ub) = kOnIntactJoint;
-    }
-  }
+  const int intact_joints = mark_intact_joints(
+      w, a, b, role, [&](Index v, Index e0) { slot_of(a, v) = Candidate{true, false, gap(w, v, e0), a, v, b, e0}; });
   auto skipped = [&](Index block, Index v) { return role_of(block, v) == kOnIntactJoint; };
-  // Blocks of one body that meet only at a mesh node (triangles of a fan with others between
-  // them) are paired there topologically: the compliance of the joints around the node lets the
-  // two copies of the node drift apart and overlap, by more than the search distance on soft
-  // joints, so the corner is judged as one vertex-vertex contact whatever the distance (up to
-  // the deepest penetration kept) and the angle between the wedges, never as a vertex against
-  // the far edge of the other wedge (docs/design.md §4.6).
   // Plain variables, not a structured binding: C++17 lets no lambda capture one (clang refuses).
   Index node_v = -1, node_u = -1;
-  std::tie(node_v, node_u) = node_only_neighbours(s, a, b);
-  if (node_v >= 0) {
-    const double dx = w.x(node_v) - w.x(node_u), dy = w.y(node_v) - w.y(node_u);
-    if (dx * dx + dy * dy > depth * depth) node_v = node_u = -1;
-  }
+  std::tie(node_v, node_u) = held_node_copies(w, a, b, depth);
   auto node_copy = [&](Index v) { return v >= 0 && (v == node_v || v == node_u); };
-  // Vertex-edge.
-  for (int side = 0; side < 2; ++side) {
+  const bool quiet = hint.quiet && hint.intact_joints == intact_joints && hint.node_copies == (node_v >= 0);
+  // Vertex-edge (none in a quiet pair).
+  for (int side = 0; side < 2 && !quiet; ++side) {
     const Index p = side == 0 ? a : b;  // vertex block
     const Index q = side == 0 ? b : a;  // edge block
     const double bx0 = ws.boxes.xmin[q], bx1 = ws.boxes.xmax[q], by0 = ws.boxes.ymin[q], by1 = ws.boxes.ymax[q];
@@ -243,6 +270,7 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
       if (skipped(b, u)) continue;
       const bool shared_node = v == node_v && u == node_u;
       if (!shared_node) {
+        if (quiet) continue;  // its other vertices lie farther apart than the capture radius
         const double dx = w.x(v) - w.x(u), dy = w.y(v) - w.y(u);
         if (dx * dx + dy * dy > vv2 || node_copy(v) || node_copy(u)) continue;
         if (wedge_gap(w, a, v, b, u) > prm.vv_max_gap_angle) continue;
@@ -276,8 +304,8 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
   // it crosses; a tip driven into a corner, inside the capture radius where no vertex-edge contact
   // forms and too far in angle for a vertex-vertex one) or only against an edge far behind
   // (entering a triangle by 0.1 µm through one edge, a vertex was paired with another 80 µm away,
-  // whose spring released ½·kn·d² at once).
-  for (int side = 0; side < 2; ++side) {
+  // whose spring released ½·kn·d² at once). No vertex lies inside in a quiet pair.
+  for (int side = 0; side < 2 && !quiet; ++side) {
     const Index p = side == 0 ? a : b;  // vertex block
     const Index q = side == 0 ? b : a;  // block it may lie inside
     const double bx0 = ws.boxes.xmin[q], bx1 = ws.boxes.xmax[q], by0 = ws.boxes.ymin[q], by1 = ws.boxes.ymax[q];
@@ -301,6 +329,7 @@ void narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, s
   }
   for (const Candidate& c : best)
     if (c.valid) out.push_back(c);
+  return quiet;
 }
 
 /// Per-vertex data of the narrow phase: unit directions of the two adjacent edges, convexity,
@@ -500,6 +529,34 @@ bool may_touch(const View& w, Index a, Index b, double reach) {
   return false;
 }
 
+/// What the pair list records of a pair a < b (PairHint): its topology now, and whether every
+/// vertex the geometric rules judge lies outside the other block and farther than search distance
+/// + skin from its boundary (the pair is then quiet until the next build: vertices move at most
+/// half the skin each, so these distances shrink by less than the skin and none is crossed).
+PairHint hint_of(const View& w, Index a, Index b, const DetectionParams& prm, std::vector<char>& role) {
+  const BlockSystem& s = w.s;
+  PairHint hint;
+  hint.intact_joints = mark_intact_joints(w, a, b, role, [](Index, Index) {});
+  const auto [node_v, node_u] = held_node_copies(w, a, b, penetration_depth(s, prm.search_distance, a, b));
+  hint.node_copies = node_v >= 0;
+  const double clear = prm.search_distance + prm.skin;
+  const Index na = s.end(a) - s.begin(a);
+  for (int side = 0; side < 2; ++side) {
+    const Index p = side == 0 ? a : b, q = side == 0 ? b : a;
+    const Index first_role = side == 0 ? -s.begin(a) : na - s.begin(b);  // role index of vertex v: v + first_role
+    for (Index v = s.begin(p); v < s.end(p); ++v) {
+      if (role[static_cast<std::size_t>(v + first_role)] != kFree || v == node_v || v == node_u) continue;
+      if (inside_block(w, q, w.x(v), w.y(v))) return hint;
+      for (Index e0 = s.begin(q); e0 < s.end(q); ++e0) {
+        const Index e1 = w.next(q, e0);
+        if (point_segment_distance(w.x(v), w.y(v), w.x(e0), w.y(e0), w.x(e1), w.y(e1)) <= clear) return hint;
+      }
+    }
+  }
+  hint.quiet = true;
+  return hint;
+}
+
 /// Largest distance any vertex has moved since the pair list was built.
 double largest_move_since_build(const BlockSystem& s, const DetectionWorkspace& work) {
   const auto nv = static_cast<std::int64_t>(s.vertex_count());
@@ -533,12 +590,20 @@ void build_pair_list(const View& w, const DetectionParams& prm, DetectionWorkspa
   grow_boxes(s, 0.5 * reach, work.reach_boxes);
   overlapping_boxes(work.reach_boxes, work, work.pairs);
   const auto n = static_cast<std::int64_t>(s.block_count());
-#pragma omp parallel for schedule(dynamic, 32)
-  for (std::int64_t b = 0; b < n; ++b) {
-    auto& list = work.pairs[b];
-    list.erase(std::remove_if(list.begin(), list.end(),
-                              [&](Index o) { return !may_touch(w, static_cast<Index>(b), o, reach); }),
-               list.end());
+  work.pair_hints.resize(static_cast<std::size_t>(n));
+#pragma omp parallel
+  {
+    std::vector<char> role;
+#pragma omp for schedule(dynamic, 32)
+    for (std::int64_t b = 0; b < n; ++b) {
+      auto& list = work.pairs[b];
+      list.erase(std::remove_if(list.begin(), list.end(),
+                                [&](Index o) { return !may_touch(w, static_cast<Index>(b), o, reach); }),
+                 list.end());
+      auto& hints = work.pair_hints[b];
+      hints.clear();
+      for (const Index o : list) hints.push_back(hint_of(w, static_cast<Index>(b), o, prm, role));
+    }
   }
   work.built_x = s.vx;
   work.built_y = s.vy;
@@ -564,24 +629,41 @@ void detect_contacts(const BlockSystem& s, const DetectionParams& prm, Detection
   const bool stale = work.pairs.size() != n || work.built_x.size() != s.vertex_count() ||
                      2.0 * largest_move_since_build(s, work) > prm.skin;
   if (stale) build_pair_list(w, prm, work);
+  const bool hinted = work.pair_hints.size() == n;
+  work.candidate_hints.resize(n);
+  long judged = 0, quiet = 0;
 #pragma omp parallel
   {
     std::vector<Candidate> best;
     std::vector<char> role;
-#pragma omp for schedule(dynamic, 32)
+#pragma omp for schedule(dynamic, 32) reduction(+ : judged, quiet)
     for (std::int64_t b = 0; b < ni; ++b) {
       // Pairs of the list whose boxes (grown by half the search distance) overlap now, and the
       // pairs of intact joints, whatever their gap.
       auto& cand = work.candidates[b];
       cand.clear();
-      for (Index o : work.pairs[b])
+      const auto& listed = work.pairs[b];
+      for (Index o : listed)
         if (boxes_overlap(work.boxes, static_cast<std::size_t>(b), static_cast<std::size_t>(o))) cand.push_back(o);
       add_joint_partners(s, static_cast<Index>(b), cand);
+      // Each candidate's hint from the list (both ascending); a joint's pair not listed has none,
+      // nor has any pair of a list restored from a checkpoint until its next build.
+      auto& hints = work.candidate_hints[b];
+      hints.clear();
+      std::size_t k = 0;
+      for (const Index o : cand) {
+        while (k < listed.size() && listed[k] < o) ++k;
+        hints.push_back(hinted && k < listed.size() && listed[k] == o ? work.pair_hints[b][k] : PairHint{});
+      }
       auto& found = work.found[b];
       found.clear();
-      for (Index o : cand) narrow_phase(w, static_cast<Index>(b), o, prm, best, role, found);
+      for (std::size_t c = 0; c < cand.size(); ++c)
+        quiet += narrow_phase(w, static_cast<Index>(b), cand[c], prm, hints[c], best, role, found) ? 1 : 0;
+      judged += static_cast<long>(cand.size());
     }
   }
+  work.pairs_judged += judged;
+  work.quiet_pairs_judged += quiet;
   std::vector<std::size_t> start(n + 1, 0);
   for (std::size_t b = 0; b < n; ++b) start[b + 1] = start[b] + work.found[b].size();
   result.resize(start[n]);

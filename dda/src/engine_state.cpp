@@ -142,6 +142,9 @@ void Engine::restore_carried_state(const std::string& state) {
   std::istringstream bytes(state, std::ios::binary);
   boost::archive::binary_iarchive archive(bytes);
   serialize_carried_state(archive);
+  // The pair list's hints are not carried: without them every pair is judged in full until the
+  // next build, which finds the same contacts (PairHint), and those of another list must not stay.
+  detection_.pair_hints.clear();
 }
 
 }  // namespace ddafrac::dda

@@ -144,16 +144,31 @@ struct alignas(64) VertexFrame {
   bool convex = false;
 };
 
+/// What the pair list knows of a pair from its last build. A quiet pair is one whose vertices
+/// that the geometric rules judge (those on no intact joint of the pair and not a node copy) all
+/// lay outside the other block and farther than search distance + skin from its boundary: until
+/// the next build no vertex moves more than half the skin, so none of them can come within the
+/// search distance or enter, and the pair's contacts are its topological ones (intact joints, the
+/// node copies) while its topology is the one recorded here.
+struct PairHint {
+  bool quiet = false;
+  int intact_joints = 0;     // intact virtual joints of the pair at the build
+  bool node_copies = false;  // its node copies were held as one vertex-vertex contact
+};
+
 /// Detection state kept between steps: the pair list and scratch space (no reallocation).
 struct DetectionWorkspace {
   BlockBoxes boxes;                       // per block, grown by half the search distance
   BlockBoxes reach_boxes;                 // grown by half of search distance + skin (pair-list builds)
   std::vector<std::vector<Index>> pairs;  // pair list: per block, partner blocks > it, ascending
+  std::vector<std::vector<PairHint>> pair_hints;  // per entry of `pairs`
   std::vector<double> built_x, built_y;   // vertex positions when the pair list was built
   long pair_list_builds = 0;
+  long pairs_judged = 0, quiet_pairs_judged = 0;  // narrow-phase pairs, and the quiet ones among them
   std::vector<VertexFrame> frames;  // per vertex
   std::vector<Index> cell_offsets, cell_blocks;
   std::vector<std::vector<Index>> candidates;        // per block: partner blocks > it
+  std::vector<std::vector<PairHint>> candidate_hints;  // per entry of `candidates`
   std::vector<std::vector<ContactCandidate>> found;  // per block: contacts of its pairs
   ContactsByVertex previous_by_vertex;               // the previous step's contacts
 };

@@ -144,6 +144,9 @@ class Engine {
   const BlockSystem& blocks() const { return blocks_; }
   BlockSystem& blocks() { return blocks_; }  // tests may break joints before a step (Joint::broken)
   const ContactSet& contacts() const { return set_; }
+  /// The contact detection's state: its pair list and how much narrow-phase work it did (counts of
+  /// work, not of results: not carried by checkpoints).
+  const DetectionWorkspace& detection() const { return detection_; }
   const Statistics& statistics() const { return stats_; }
   Statistics& statistics() { return stats_; }
   const ActiveTerms& active_terms() const { return active_; }
