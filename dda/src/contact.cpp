@@ -36,6 +36,7 @@ constexpr char kInCornerPair = 2;   // one of two corners reduced to one vertex-
 struct View {
   const BlockSystem& s;
   const DetectionWorkspace& w;
+  double sin_tol = 0.0;  // sine of DetectionParams::angle_tolerance
   double x(Index v) const { return s.vx[static_cast<std::size_t>(v)]; }
   double y(Index v) const { return s.vy[static_cast<std::size_t>(v)]; }
   Index prev(Index block, Index v) const { return v == s.begin(block) ? s.end(block) - 1 : v - 1; }
@@ -149,6 +150,25 @@ Index closed_corner_edge(const View& w, Index vblock, Index v, Index eblock) {
   return e && e->closed_corner ? e->edge : -1;
 }
 
+/// The one contact of the corner where vertex v of block a meets vertex u of block b, reduced to
+/// the reference line with the largest gap (the entrance line) among those the angle rules allow,
+/// or an invalid candidate. A closed corner keeps the reference line it had while the angle rules
+/// allow it: switching to another line of the same corner while overlapping would make the gap,
+/// and the energy of its spring, jump.
+Candidate corner_contact(const View& w, Index a, Index v, Index b, Index u, bool shared_node, double sin_tol) {
+  const Index opts[4][4] = {{a, v, b, w.prev(b, u)}, {a, v, b, u}, {b, u, a, w.prev(a, v)}, {b, u, a, v}};
+  const Index closed_edge_v = closed_corner_edge(w, a, v, b), closed_edge_u = closed_corner_edge(w, b, u, a);
+  Candidate chosen, kept;
+  for (const auto& o : opts) {
+    const VertexFrame& edge = w.w.frames[static_cast<std::size_t>(o[3])];
+    if (!wedge_faces_edge(w, o[1], edge.enx, edge.eny, sin_tol)) continue;
+    const Candidate option{true, true, gap(w, o[1], o[3]), o[0], o[1], o[2], o[3], shared_node};
+    if (!chosen.valid || option.d > chosen.d) chosen = option;
+    if (o[3] == (o[1] == v ? closed_edge_v : closed_edge_u)) kept = option;
+  }
+  return kept.valid ? kept : chosen;
+}
+
 /// Deepest penetration still paired between blocks a and b (kPenetrationEdgeFraction).
 double penetration_depth(const BlockSystem& s, double search, Index a, Index b) {
   return std::max(search, kPenetrationEdgeFraction * std::min(s.min_edge[a], s.min_edge[b]));
@@ -160,8 +180,8 @@ double penetration_depth(const BlockSystem& s, double search, Index a, Index b) 
 /// sides, take no other contact of this pair; once the joint breaks they are detected like any
 /// vertex (a broken joint behaves as if it had never been bonded).
 /// Sets `role` (a's vertices, then b's) to kOnIntactJoint for those vertices and kFree for the
-/// others, calls hold(v, e0) for each of a's (b's CCW edge along the joint starts at e0), and
-/// returns how many intact joints the pair has.
+/// others, calls hold(joint, v, e0) for each of a's (b's CCW edge along the joint starts at e0),
+/// and returns how many intact joints the pair has.
 template <class Hold>
 int mark_intact_joints(const View& w, Index a, Index b, std::vector<char>& role, Hold&& hold) {
   const BlockSystem& s = w.s;
@@ -182,7 +202,7 @@ int mark_intact_joints(const View& w, Index a, Index b, std::vector<char>& role,
     const Index e0 = w.next(b, ua) == ub ? ua : ub;  // b's CCW edge along the joint
     for (Index v : {j.vertex_a, j.vertex_b}) {
       role[static_cast<std::size_t>(v - s.begin(a))] = kOnIntactJoint;
-      hold(v, e0);
+      hold(s.joint_of_block[k], v, e0);
     }
     role[static_cast<std::size_t>(na + ua - s.begin(b))] = role[static_cast<std::size_t>(na + ub - s.begin(b))] =
         kOnIntactJoint;
@@ -212,14 +232,32 @@ bool narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, c
                   std::vector<Candidate>& best, std::vector<char>& role, std::vector<Candidate>& out) {
   const BlockSystem& s = w.s;
   const DetectionWorkspace& ws = w.w;
+  const double search = prm.search_distance;
+  const double sin_tol = w.sin_tol;
+  const double depth = penetration_depth(s, search, a, b);
+  // The pairs an intact body is made of, quiet with the topology recorded: blocks joined by one
+  // intact joint get that joint's two contacts, blocks meeting only at a mesh node the node's
+  // corner contact; what the full judgement below gives them, in the same order.
+  if (hint.quiet && hint.intact_joints == 1 && hint.joint >= 0 &&
+      !s.joints[static_cast<std::size_t>(hint.joint)].broken) {
+    const Joint& j = s.joints[static_cast<std::size_t>(hint.joint)];
+    for (const Index v : {std::min(j.vertex_a, j.vertex_b), std::max(j.vertex_a, j.vertex_b)})
+      out.push_back(Candidate{true, false, gap(w, v, hint.joint_edge), a, v, b, hint.joint_edge});
+    return true;
+  }
+  if (hint.quiet && hint.intact_joints == 0 && hint.node_copies && hint.node_v >= 0) {
+    const double dx = w.x(hint.node_v) - w.x(hint.node_u), dy = w.y(hint.node_v) - w.y(hint.node_u);
+    if (dx * dx + dy * dy <= depth * depth) {
+      const Candidate corner = corner_contact(w, a, hint.node_v, b, hint.node_u, true, sin_tol);
+      if (corner.valid) out.push_back(corner);
+      return true;
+    }
+  }
   const Index na = s.end(a) - s.begin(a);
   const Index nb = s.end(b) - s.begin(b);
   best.assign(static_cast<std::size_t>(na + nb), Candidate{});
-  const double search = prm.search_distance;
   const double vv = std::min(search, kVertexVertexEdgeFraction * std::min(s.min_edge[a], s.min_edge[b]));
   const double vv2 = vv * vv;
-  const double sin_tol = std::sin(prm.angle_tolerance);
-  const double depth = penetration_depth(s, search, a, b);
   auto slot_of = [&](Index block, Index v) -> Candidate& {
     return block == a ? best[static_cast<std::size_t>(v - s.begin(a))]
                       : best[static_cast<std::size_t>(na + v - s.begin(b))];
@@ -228,7 +266,8 @@ bool narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, c
     return role[static_cast<std::size_t>(block == a ? v - s.begin(a) : na + v - s.begin(b))];
   };
   const int intact_joints = mark_intact_joints(
-      w, a, b, role, [&](Index v, Index e0) { slot_of(a, v) = Candidate{true, false, gap(w, v, e0), a, v, b, e0}; });
+      w, a, b, role,
+      [&](Index, Index v, Index e0) { slot_of(a, v) = Candidate{true, false, gap(w, v, e0), a, v, b, e0}; });
   auto skipped = [&](Index block, Index v) { return role_of(block, v) == kOnIntactJoint; };
   // Plain variables, not a structured binding: C++17 lets no lambda capture one (clang refuses).
   Index node_v = -1, node_u = -1;
@@ -275,20 +314,7 @@ bool narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, c
         if (dx * dx + dy * dy > vv2 || node_copy(v) || node_copy(u)) continue;
         if (wedge_gap(w, a, v, b, u) > prm.vv_max_gap_angle) continue;
       }
-      // A closed corner keeps the reference line it had while the angle rules allow it: switching
-      // to another line of the same corner while overlapping would make the gap, and the energy
-      // of its spring, jump.
-      const Index opts[4][4] = {{a, v, b, w.prev(b, u)}, {a, v, b, u}, {b, u, a, w.prev(a, v)}, {b, u, a, v}};
-      const Index closed_edge_v = closed_corner_edge(w, a, v, b), closed_edge_u = closed_corner_edge(w, b, u, a);
-      Candidate chosen, kept;
-      for (const auto& o : opts) {
-        const VertexFrame& edge = ws.frames[static_cast<std::size_t>(o[3])];
-        if (!wedge_faces_edge(w, o[1], edge.enx, edge.eny, sin_tol)) continue;
-        const Candidate option{true, true, gap(w, o[1], o[3]), o[0], o[1], o[2], o[3], shared_node};
-        if (!chosen.valid || option.d > chosen.d) chosen = option;
-        if (o[3] == (o[1] == v ? closed_edge_v : closed_edge_u)) kept = option;
-      }
-      if (kept.valid) chosen = kept;
+      const Candidate chosen = corner_contact(w, a, v, b, u, shared_node, sin_tol);
       if (!chosen.valid) continue;
       offer(slot_of(chosen.vblock, chosen.vertex), chosen);
       role_of(a, v) = role_of(b, u) = kInCornerPair;
@@ -536,7 +562,11 @@ bool may_touch(const View& w, Index a, Index b, double reach) {
 PairHint hint_of(const View& w, Index a, Index b, const DetectionParams& prm, std::vector<char>& role) {
   const BlockSystem& s = w.s;
   PairHint hint;
-  hint.intact_joints = mark_intact_joints(w, a, b, role, [](Index, Index) {});
+  hint.intact_joints = mark_intact_joints(w, a, b, role, [&](Index joint, Index, Index e0) {
+    hint.joint = joint;
+    hint.joint_edge = e0;
+  });
+  std::tie(hint.node_v, hint.node_u) = node_only_neighbours(s, a, b);
   const auto [node_v, node_u] = held_node_copies(w, a, b, penetration_depth(s, prm.search_distance, a, b));
   hint.node_copies = node_v >= 0;
   const double clear = prm.search_distance + prm.skin;
@@ -625,7 +655,7 @@ void detect_contacts(const BlockSystem& s, const DetectionParams& prm, Detection
   work.found.resize(n);
   work.previous_by_vertex.build(previous, s.vertex_count());
   vertex_data(s, work);
-  const View w{s, work};
+  const View w{s, work, std::sin(prm.angle_tolerance)};
   const bool stale = work.pairs.size() != n || work.built_x.size() != s.vertex_count() ||
                      2.0 * largest_move_since_build(s, work) > prm.skin;
   if (stale) build_pair_list(w, prm, work);

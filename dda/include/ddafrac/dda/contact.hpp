@@ -153,7 +153,11 @@ struct alignas(64) VertexFrame {
 struct PairHint {
   bool quiet = false;
   int intact_joints = 0;     // intact virtual joints of the pair at the build
-  bool node_copies = false;  // its node copies were held as one vertex-vertex contact
+  Index joint = -1;          // the last of them (BlockSystem::joints), -1 if none
+  Index joint_edge = -1;     // first vertex of the second block's edge along that joint
+  Index node_v = -1, node_u = -1;  // copies (first block's, second's) of the one mesh node the
+                                   // blocks share if they share no edge, else -1
+  bool node_copies = false;  // they were held as one vertex-vertex contact
 };
 
 /// Detection state kept between steps: the pair list and scratch space (no reallocation).
