@@ -106,8 +106,11 @@ Contact make_contact(const View& w, const Candidate& cd) {
   c.d0 = cd.d;
   c.ref_t = ((w.x(v) - w.x(e0)) * dx + (w.y(v) - w.y(e0)) * dy) / l2;
   c.edge_length = std::sqrt(l2);
-  c.joint = find_joint(w.s, cd.vblock, cd.eblock, w.s.vertex_node[static_cast<std::size_t>(v)],
-                       w.s.vertex_node[static_cast<std::size_t>(e0)], w.s.vertex_node[static_cast<std::size_t>(e1)]);
+  c.joint = cd.joint != Candidate::kJointToFind
+                ? cd.joint
+                : find_joint(w.s, cd.vblock, cd.eblock, w.s.vertex_node[static_cast<std::size_t>(v)],
+                             w.s.vertex_node[static_cast<std::size_t>(e0)],
+                             w.s.vertex_node[static_cast<std::size_t>(e1)]);
   return c;
 }
 
@@ -242,13 +245,14 @@ bool narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, c
       !s.joints[static_cast<std::size_t>(hint.joint)].broken) {
     const Joint& j = s.joints[static_cast<std::size_t>(hint.joint)];
     for (const Index v : {std::min(j.vertex_a, j.vertex_b), std::max(j.vertex_a, j.vertex_b)})
-      out.push_back(Candidate{true, false, gap(w, v, hint.joint_edge), a, v, b, hint.joint_edge});
+      out.push_back(Candidate{true, false, gap(w, v, hint.joint_edge), a, v, b, hint.joint_edge, false, hint.joint});
     return true;
   }
   if (hint.quiet && hint.intact_joints == 0 && hint.node_copies && hint.node_v >= 0) {
     const double dx = w.x(hint.node_v) - w.x(hint.node_u), dy = w.y(hint.node_v) - w.y(hint.node_u);
     if (dx * dx + dy * dy <= depth * depth) {
-      const Candidate corner = corner_contact(w, a, hint.node_v, b, hint.node_u, true, sin_tol);
+      Candidate corner = corner_contact(w, a, hint.node_v, b, hint.node_u, true, sin_tol);
+      corner.joint = -1;  // blocks that share one node share no edge, so no joint either
       if (corner.valid) out.push_back(corner);
       return true;
     }

@@ -106,6 +106,9 @@ struct ContactCandidate {
   double d = 0.0;
   Index vblock = 0, vertex = 0, eblock = 0, e0 = 0;
   bool shared_node = false;  // vv between the copies of one mesh node in one body (Contact::shared_node)
+  // Contact::joint where the narrow phase knows it (-1: none), else kJointToFind.
+  static constexpr Index kJointToFind = -2;
+  Index joint = kJointToFind;
 };
 
 /// The contacts of a list grouped by vertex (CSR): the contact of a vertex in a block pair is
