@@ -75,11 +75,17 @@ std::string status_line(const StudyCase& study_case, bool study_running, std::si
                      series_width, t * kMicroseconds, end * kMicroseconds, wall, state);
 }
 
+/// The study file of the study in `out`; throws CommandFailed naming the option if there is none.
+json existing_study(const StudyKind& kind, const fs::path& out, const char* option) {
+  if (!fs::exists(out / kStudyFile))
+    throw CommandFailed(
+        fmt::format("{} {}: {} holds no study (no {})", kind.command, option, out.string(), kStudyFile));
+  return read_study_file(out);
+}
+
 void print_status(const StudyKind& kind, const StudyArguments& args) {
   const fs::path out(args.out);
-  if (!fs::exists(out / kStudyFile))
-    throw CommandFailed(fmt::format("{} --status: {} holds no study (no {})", kind.command, out.string(), kStudyFile));
-  const json study = read_study_file(out);
+  const json study = existing_study(kind, out, "--status");
   const long pid = study.is_object() ? study.value("pid", 0L) : 0L;
   const bool running = alive(pid);
   const std::vector<StudyCase> cases = choose_cases(kind.load(study_overrides(args, study)), args.cases, kind.command);
@@ -101,6 +107,24 @@ void write_tables(const StudyKind& kind, const fs::path& out, const std::vector<
                   const std::vector<std::string>& overrides, const std::vector<std::string>& figures) {
   common::write_whole_text(out / "study.csv", study_csv(cases, out));
   common::write_whole_text(out / "study.md", kind.markdown(cases, overrides, figures));
+}
+
+/// study.md and study.csv with the series' figures, from what the cases' run directories hold.
+void write_report(const StudyKind& kind, const fs::path& out, const std::vector<StudyCase>& cases,
+                  const std::vector<std::string>& overrides) {
+  write_tables(kind, out, cases, overrides, {});
+  std::fflush(stdout);  // before the plotting script prints to the same terminal
+  draw_figures({kind.figures_command, out.string()});
+  write_tables(kind, out, cases, overrides, figure_names(out));
+  fmt::print("wrote {}\n", (out / "study.md").string());
+}
+
+/// --report: the report of the cases run so far (the rest marked not run), whether or not
+/// the study is still running; runs nothing.
+void report_study(const StudyKind& kind, const StudyArguments& args) {
+  const fs::path out(args.out);
+  const std::vector<std::string> overrides = study_overrides(args, existing_study(kind, out, "--report"));
+  write_report(kind, out, choose_cases(kind.load(overrides), args.cases, kind.command), overrides);
 }
 
 void run_study(const StudyKind& kind, const StudyArguments& args) {
@@ -133,12 +157,8 @@ void run_study(const StudyKind& kind, const StudyArguments& args) {
                    [&] { write_tables(kind, out, cases, overrides, {}); }, &ranks});
   if (!ranks.is_root()) return;
   for (std::size_t k = 0; k < cases.size(); ++k) cases[k].run = runs[k];
-  write_tables(kind, out, cases, overrides, {});
-  std::fflush(stdout);  // before the plotting script prints to the same terminal
-  draw_figures({kind.figures_command, out.string()});
-  write_tables(kind, out, cases, overrides, figure_names(out));
+  write_report(kind, out, cases, overrides);
   write_study_file(out, overrides, 0);
-  fmt::print("wrote {}\n", (out / "study.md").string());
 
   const auto failed = std::count_if(runs.begin(), runs.end(), [](const CaseRun& c) { return c.exit_code != 0; });
   if (failed > 0) throw CommandFailed(fmt::format("{} of {} cases failed (see their run.log)", failed, runs.size()));
@@ -194,19 +214,30 @@ void add_study_options(CLI::App& command, StudyArguments& args, const std::strin
   auto* status = command.add_flag(
       "--status", args.status, "list the cases as done / running / failed / to do with their run times; run nothing");
   status->excludes(resume);
+  auto* report = command.add_flag("--report", args.report,
+                                  "write study.md, study.csv and the figures of the cases run so far (the rest "
+                                  "marked not run), also while the study runs; run nothing");
+  report->excludes(resume)->excludes(status);
   command.add_option("--set", args.overrides, set_help)->type_name("KEY=VALUE");
   command.add_option("--parallel", args.parallel, "runs at once (default: the cores)")
       ->check(whole_number(1, kMaxParallelRuns))
-      ->excludes(status);
+      ->excludes(status)
+      ->excludes(report);
   command.add_option("--cases", args.cases, "only these cases (comma-separated scene names)")->delimiter(',');
   command
       .add_option("--checkpoint-every", args.checkpoint_every,
                   "wall seconds between the checkpoints of each run (default: that of ddafrac run)")
       ->check(non_negative_number())
-      ->excludes(status);
+      ->excludes(status)
+      ->excludes(report);
   command.callback([&args, kind] {
     const StudyKind k = kind();
-    args.status ? print_status(k, args) : run_study(k, args);
+    if (args.status)
+      print_status(k, args);
+    else if (args.report)
+      report_study(k, args);
+    else
+      run_study(k, args);
   });
 }
 

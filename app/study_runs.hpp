@@ -26,6 +26,7 @@ struct StudyArguments {
   std::string out;
   bool resume = false;
   bool status = false;
+  bool report = false;  // write the tables and figures of the cases finished so far, run nothing
   std::vector<std::string> overrides;
   int parallel = 0;
   std::vector<std::string> cases;  // scene names; empty: all

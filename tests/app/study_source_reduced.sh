@@ -3,7 +3,8 @@
 # given below, its virtual joints weakened so that cracks form within that time), killed with its
 # runs after its first case finished, then resumed. Asserts what must hold whatever the mesh:
 #   - the resume keeps the finished first case (not run again: its files untouched);
-#   - --status lists it as done, the others as to do, and all as done at the end;
+#   - --status lists it as done, the others as to do, and all as done at the end; --report then
+#     writes study.md with its row filled and the others "not run";
 #   - every case completed, study.md has a row for every case, study.csv lists them;
 #   - crack counts (total, tensile, shear) never decrease in any history.csv, nor the crack
 #     lengths and fragment counts in fragments.csv;
@@ -36,6 +37,11 @@ kept_summary=$(md5sum < "$study/$first/summary.json")
 cat "$work/status_killed.log"
 grep -q "^$first .* done$" "$work/status_killed.log" || fail "--status does not list $first as done"
 grep -q "impact-case15 .* to do" "$work/status_killed.log" || fail "--status does not list impact-case15 as to do"
+
+# --report writes the report of what finished: the first case's row has numbers, the others "not run".
+"$exe" study source --out "$study" --report > "$work/report_killed.log" 2>&1 || { cat "$work/report_killed.log"; fail "--report failed"; }
+grep -q "^| $first | flattened | [0-9]" "$study/study.md" || fail "--report: study.md has no numbers for $first"
+grep -q "^| impact-case15 | impact-v0 | not run |" "$study/study.md" || fail "--report: study.md shows numbers for impact-case15, not run"
 
 "$exe" study source --out "$study" --resume > "$work/resume.log" 2>&1
 code=$?
