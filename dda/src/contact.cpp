@@ -45,10 +45,10 @@ struct View {
 
 /// Angle rule: the wedge at vertex v lies on the outer side of an edge with outward unit normal
 /// (nx, ny), within the tolerance, and the vertex is convex (reflex vertices contact by edges).
-bool wedge_faces_edge(const View& w, Index v, double nx, double ny, double sin_tol) {
+bool wedge_faces_edge(const View& w, Index v, double nx, double ny) {
   const VertexFrame& f = w.w.frames[static_cast<std::size_t>(v)];
   if (!f.convex) return false;
-  return f.ax * nx + f.ay * ny >= -sin_tol && f.bx * nx + f.by * ny >= -sin_tol;
+  return f.ax * nx + f.ay * ny >= -w.sin_tol && f.bx * nx + f.by * ny >= -w.sin_tol;
 }
 
 double angle_mod(double a) { return std::fmod(std::fmod(a, kTwoPi) + kTwoPi, kTwoPi); }
@@ -158,13 +158,13 @@ Index closed_corner_edge(const View& w, Index vblock, Index v, Index eblock) {
 /// or an invalid candidate. A closed corner keeps the reference line it had while the angle rules
 /// allow it: switching to another line of the same corner while overlapping would make the gap,
 /// and the energy of its spring, jump.
-Candidate corner_contact(const View& w, Index a, Index v, Index b, Index u, bool shared_node, double sin_tol) {
+Candidate corner_contact(const View& w, Index a, Index v, Index b, Index u, bool shared_node) {
   const Index opts[4][4] = {{a, v, b, w.prev(b, u)}, {a, v, b, u}, {b, u, a, w.prev(a, v)}, {b, u, a, v}};
   const Index closed_edge_v = closed_corner_edge(w, a, v, b), closed_edge_u = closed_corner_edge(w, b, u, a);
   Candidate chosen, kept;
   for (const auto& o : opts) {
     const VertexFrame& edge = w.w.frames[static_cast<std::size_t>(o[3])];
-    if (!wedge_faces_edge(w, o[1], edge.enx, edge.eny, sin_tol)) continue;
+    if (!wedge_faces_edge(w, o[1], edge.enx, edge.eny)) continue;
     const Candidate option{true, true, gap(w, o[1], o[3]), o[0], o[1], o[2], o[3], shared_node};
     if (!chosen.valid || option.d > chosen.d) chosen = option;
     if (o[3] == (o[1] == v ? closed_edge_v : closed_edge_u)) kept = option;
@@ -236,7 +236,6 @@ bool narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, c
   const BlockSystem& s = w.s;
   const DetectionWorkspace& ws = w.w;
   const double search = prm.search_distance;
-  const double sin_tol = w.sin_tol;
   const double depth = penetration_depth(s, search, a, b);
   // The pairs an intact body is made of, quiet with the topology recorded: blocks joined by one
   // intact joint get that joint's two contacts, blocks meeting only at a mesh node the node's
@@ -251,7 +250,7 @@ bool narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, c
   if (hint.quiet && hint.intact_joints == 0 && hint.node_copies && hint.node_v >= 0) {
     const double dx = w.x(hint.node_v) - w.x(hint.node_u), dy = w.y(hint.node_v) - w.y(hint.node_u);
     if (dx * dx + dy * dy <= depth * depth) {
-      Candidate corner = corner_contact(w, a, hint.node_v, b, hint.node_u, true, sin_tol);
+      Candidate corner = corner_contact(w, a, hint.node_v, b, hint.node_u, true);
       corner.joint = -1;  // blocks that share one node share no edge, so no joint either
       if (corner.valid) out.push_back(corner);
       return true;
@@ -298,7 +297,7 @@ bool narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, c
         if (along < 0.0 || along > l) continue;
         const double sx = px - w.x(e1), sy = py - w.y(e1);
         if (rx * rx + ry * ry <= vv2 || sx * sx + sy * sy <= vv2) continue;
-        if (!wedge_faces_edge(w, v, edge.enx, edge.eny, sin_tol)) continue;
+        if (!wedge_faces_edge(w, v, edge.enx, edge.eny)) continue;
         // Behind an edge is a penetration only inside the block: a vertex outside a triangle
         // near one of its corners lies behind an edge too (loose fragments of a cracked mesh).
         if (d < 0.0 && !inside_block(w, q, px, py)) continue;
@@ -318,7 +317,7 @@ bool narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, c
         if (dx * dx + dy * dy > vv2 || node_copy(v) || node_copy(u)) continue;
         if (wedge_gap(w, a, v, b, u) > prm.vv_max_gap_angle) continue;
       }
-      const Candidate chosen = corner_contact(w, a, v, b, u, shared_node, sin_tol);
+      const Candidate chosen = corner_contact(w, a, v, b, u, shared_node);
       if (!chosen.valid) continue;
       offer(slot_of(chosen.vblock, chosen.vertex), chosen);
       role_of(a, v) = role_of(b, u) = kInCornerPair;
