@@ -107,7 +107,9 @@ std::string study_markdown(const std::vector<StudyCase>& cases, const std::vecto
   std::string md = "# The source study\n\n";
   md += fmt::format(
       "Written by `ddafrac study source`{}. Every number below is read from the case's "
-      "`summary.json`; a case not run yet shows dashes.\n\n",
+      "`summary.json`; a case not run yet says so, and a dash marks a measure a run did not reach. "
+      "The Brazilian discs' peak forces, indirect tensile strengths and the flattened disc's mesh "
+      "convergence are in [analysis.md](analysis.md), written with the figures.\n\n",
       overrides.empty() ? std::string(" at full size")
                         : fmt::format(" with `--set {}`", fmt::join(overrides, " --set ")));
   md += case_table(cases);

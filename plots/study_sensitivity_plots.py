@@ -257,6 +257,8 @@ def mesh_section(h, runs, figures, save):
                       os.path.join(figures, "mesh.png"), save)
     if discs:
         md += "Flattened disc:\n\n" + brazilian_table(h, discs, "blocks", lambda r: r["blocks"], "{:.0f}") + "\n"
+        md += measure_table(discs, "blocks", lambda r: r["blocks"], "{:.0f}") + "\n"
+        md += observed_orders(discs, lambda r: r["blocks"] ** -0.5, "meshes") + "\n"
         forces = [peak_force(r)[0] for r in discs if peak_force(r)]
         if len(forces) >= 2:
             md += (f"Peak force from the coarsest to the finest mesh: {forces[0] * KILONEWTONS:.1f} → "

@@ -10,10 +10,16 @@ loading.csv and VTU snapshots, and writes into STUDY_DIR/figures/:
     patterns_<series>.png   per impact series: the crack pattern over σ1 of every case at the
                             given times (a panel stays empty where the run has no snapshot there)
     loading_<series>.png    per Brazilian series: the top platen's force against its displacement
+    patterns_<series>.png   per Brazilian series: every case's crack pattern over σ1 at its peak
+                            force and at its end (the snapshots nearest to those times)
     gauges_<case>.png       σ1 at every gauge of one case (--gauge-case, default case 4), with the
                             virtual joints' tensile strength from its scene.resolved.toml
 
-Every PNG is written whole by the caller's save().
+and STUDY_DIR/analysis.md: the Brazilian discs' peak forces and indirect tensile strengths, and
+the flattened disc's crack measures against its mesh with their observed convergence orders (the
+sensitivity study's tables, study_sensitivity_plots.py, read from the runs that completed).
+
+Every PNG and analysis.md are written whole (the caller's save(), a temporary name then rename).
 """
 
 import os
@@ -24,6 +30,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+import study_sensitivity_plots as sensitivity  # noqa: E402  (beside this script)
 
 MICROSECONDS = 1e6  # µs per s
 MILLIMETRES = 1e3  # mm per m
@@ -177,19 +184,80 @@ def draw_gauges(h, case, run_dir, out_dir, save):
     save(figure, os.path.join(out_dir, f"gauges_{case}.png"))
 
 
+def draw_brazilian_patterns(h, series, cases, out_dir, save):
+    """Per case: the pattern at the snapshot nearest its peak force and at its last snapshot."""
+    rows = []
+    for case, run_dir in cases:
+        snapshots = h.read_snapshots(run_dir)
+        run = sensitivity.read_run(h, case, [series], run_dir)
+        peak = sensitivity.peak_force(run) if run else None
+        if not snapshots or peak is None:
+            continue
+        at_peak = min(snapshots, key=lambda s: abs(s[0] - peak[1]))
+        rows.append((case, sensitivity.platen_speed(run), ((at_peak, "peak"), (snapshots[-1], "end"))))
+    if not rows:
+        return
+    figure, axes = plt.subplots(len(rows), 2, figsize=(8.0, 3.8 * len(rows)), squeeze=False)
+    collections = []
+    for row, (case, speed, panels) in enumerate(rows):
+        for column, ((time, path), label) in enumerate(panels):
+            a = axes[row][column]
+            a.set_xticks([])
+            a.set_yticks([])
+            a.set_title(f"{case}, {label}\n{time * MICROSECONDS:.0f} µs, platen travel "
+                        f"{speed * time * MILLIMETRES:.3f} mm", fontsize="small")
+            collections.append(h.draw_pattern(a, path))
+    limit = max(c.get_clim()[1] for c in collections)
+    for c in collections:
+        c.set_clim(-limit, limit)
+    figure.colorbar(collections[0], ax=axes, shrink=0.6, label="σ1 (MPa, tension positive)")
+    save(figure, os.path.join(out_dir, f"patterns_{series}.png"))
+
+
+def slit_angle(run):
+    return run["scene"].get("geometry", {}).get("slit_angle")
+
+
+def brazilian_analysis(h, groups, study_dir, out_dir, save):
+    """analysis.md of the Brazilian series that have completed runs (nothing if none has)."""
+    runs = {series: [r for r in (sensitivity.read_run(h, case, [series], run_dir) for case, run_dir in cases) if r]
+            for series, cases in groups.items() if series in BRAZILIAN_SERIES}
+    if not any(runs.values()):
+        return
+    md = "# The source study: Brazilian discs\n\n"
+    md += ("Read from the completed runs by `ddafrac_plots.py study-source`. Indirect tensile strength: "
+           "σt = k·2P/(πD) per unit thickness, k the flattened-disc factor of Wang et al. (2004, Int. J. Rock "
+           "Mech. Min. Sci. 41, 245–253) for the flats' central angle (k = 1: the Brazilian formula); the "
+           "pre-cracked discs' σt is the same formula applied to a disc with a slit, for comparison only.\n\n")
+    missing = [case for series, cases in groups.items() if series in BRAZILIAN_SERIES for case, _ in cases
+               if case not in {r["case"] for r in runs[series]}]
+    if missing:
+        md += "Not completed (left out): " + ", ".join(missing) + ".\n\n"
+    if runs.get("flattened"):
+        md += sensitivity.mesh_section(h, runs["flattened"], out_dir, save)
+    if runs.get("precracked"):
+        precracked = sorted(runs["precracked"], key=lambda r: slit_angle(r) or 0.0)
+        md += "## Pre-cracked discs\n\n" + sensitivity.brazilian_table(h, precracked, "slit angle (°)", slit_angle,
+                                                                         "{:.0f}") + "\n"
+    sensitivity.write_whole(os.path.join(study_dir, "analysis.md"), md)
+
+
 def draw_study(args, h, save):
     out_dir = os.path.join(args.study_dir, "figures")
     os.makedirs(out_dir, exist_ok=True)
     times = [float(t) for t in args.times.split(",") if t]
-    for series, cases in series_cases(h, args.study_dir).items():
+    groups = series_cases(h, args.study_dir)
+    for series, cases in groups.items():
         if series in IMPACT_SERIES:
             draw_counts(h, series, cases, out_dir, save)
             draw_patterns(h, series, cases, times, out_dir, save)
         elif series in BRAZILIAN_SERIES:
             draw_loading(h, series, cases, out_dir, save)
+            draw_brazilian_patterns(h, series, cases, out_dir, save)
         for case, run_dir in cases:
             if case == args.gauge_case:
                 draw_gauges(h, case, run_dir, out_dir, save)
+    brazilian_analysis(h, groups, args.study_dir, out_dir, save)
 
 
 def register(commands, helpers, save):

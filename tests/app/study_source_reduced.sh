@@ -9,6 +9,8 @@
 #   - crack counts (total, tensile, shear) never decrease in any history.csv, nor the crack
 #     lengths and fragment counts in fragments.csv;
 #   - the largest |energy-balance error| of every run is within 1% (the run's own warning level);
+#   - analysis.md gives every Brazilian disc's indirect tensile strength as k·2P/(πD) of its
+#     peak force, and the flattened disc's mesh convergence table; the Brazilian pattern figures exist;
 #   - the case that cracked most, run again on 2 threads, writes the same history.csv, cracks.csv
 #     and fragments.csv byte for byte (results do not depend on the thread count).
 # Usage: study_source_reduced.sh DDAFRAC WORK_DIR
@@ -64,6 +66,22 @@ for c in $cases; do
     cracked=$((cracked + 1))
 done
 [ $cracked -gt 0 ] || fail "no case cracked: the checks of crack counts over time saw nothing"
+
+# The Brazilian analysis: a peak-force row for every disc, its indirect tensile strength
+# k·2P/(πD) recomputed here from summary.json (k = 0.9899 for 10° flats, D = 0.1 m), the
+# flattened disc's convergence table, and the patterns at the peak and the end.
+for c in $(echo "$cases" | grep -E '^(flattened|precracked)-'); do
+  row=$(grep -m 1 "^| $c | " "$study/analysis.md") || fail "analysis.md has no peak-force row for $c"
+  expected=$(python3 -c 'import json,math,sys
+p = json.load(open(sys.argv[1]))["loading"]["peak"]["top_platen"]["peak_abs_force_y"]
+print(f"{0.9899 * 2 * p / (math.pi * 0.1) * 1e-6:.2f}")' "$study/$c/summary.json")
+  [ "$(echo "$row" | cut -d'|' -f7 | tr -d ' ')" = "$expected" ] ||
+    fail "analysis.md: $c's indirect tensile strength is not k·2P/(πD) = $expected MPa: $row"
+done
+grep -q "^| crack length (mm) | " "$study/analysis.md" || fail "analysis.md has no mesh convergence table"
+for s in flattened precracked; do
+  [ -s "$study/figures/patterns_$s.png" ] || fail "no figures/patterns_$s.png"
+done
 echo "$cracked of 22 cases cracked"
 
 most=$(for c in $cases; do echo "$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["cracks"]["total"])' "$study/$c/summary.json") $c"; done | sort -n | tail -n 1 | cut -d' ' -f2)
