@@ -259,10 +259,13 @@ def mesh_section(h, runs, figures, save):
         md += "Flattened disc:\n\n" + brazilian_table(h, discs, "blocks", lambda r: r["blocks"], "{:.0f}") + "\n"
         md += measure_table(discs, "blocks", lambda r: r["blocks"], "{:.0f}") + "\n"
         md += observed_orders(discs, lambda r: r["blocks"] ** -0.5, "meshes") + "\n"
-        forces = [peak_force(r)[0] for r in discs if peak_force(r)]
-        if len(forces) >= 2:
-            md += (f"Peak force from the coarsest to the finest mesh: {forces[0] * KILONEWTONS:.1f} → "
-                   f"{forces[-1] * KILONEWTONS:.1f} kN/m ({(forces[-1] / forces[0] - 1.0) * PERCENT:+.1f}%).\n\n")
+        for what, force in (("Peak force", lambda r: peak_force(r)[0] if peak_force(r) else None),
+                            ("Largest force up to the first crack", lambda r: force_to_first_crack(h, r))):
+            forces = [f for f in map(force, discs) if f is not None]
+            if len(forces) >= 2:
+                md += (f"{what} from the coarsest to the finest mesh: "
+                       + " → ".join(f"{f * KILONEWTONS:.1f}" for f in forces)
+                       + f" kN/m ({(forces[-1] / forces[0] - 1.0) * PERCENT:+.1f}%).\n\n")
     return md
 
 
@@ -279,6 +282,19 @@ def first_crack(h, run):
     return cracks["type"][0], math.hypot(x, y) / (diameter / 2.0), float(cracks["t"][0])
 
 
+def force_to_first_crack(h, run):
+    """The largest platen force (N/m) up to the first crack (the crack-initiation load), or None.
+    Unlike the peak force, which comes after cracking has begun, it does not depend on how the
+    cracks grow on a given mesh."""
+    first = first_crack(h, run)
+    path = os.path.join(run["dir"], "loading.csv")
+    if first is None or not os.path.exists(path):
+        return None
+    loading = h.read_columns(path)
+    mask = (np.array(loading["body"]) == LOADED_BODY) & (h.numbers(loading, "t") <= first[2])
+    return float(np.abs(h.numbers(loading, "force_y")[mask]).max()) if mask.any() else None
+
+
 def centre_sigma1_to_peak(h, run):
     """The largest σ1 (Pa) at the gauge named "centre" up to the peak force, or None."""
     peak = peak_force(run)
@@ -293,8 +309,8 @@ def centre_sigma1_to_peak(h, run):
 def brazilian_table(h, runs, parameter, value, form="{:.3g}"):
     md = (f"| case | {parameter} | peak force (kN/m) | platen travel at peak (mm) | k | σt indirect (MPa) "
           "| centre σ1 to the peak (MPa) | σt of the joints (MPa) | ratio | first crack: kind, r/R, travel (mm) "
-          "| kinetic/strain to the peak: median / max (%) | cracks T / S "
-          "| crack length (mm) | wall (s) |\n|---|--:|--:|--:|--:|--:|--:|--:|--:|---|--:|--:|--:|--:|\n")
+          "| largest force to the first crack (kN/m) | kinetic/strain to the peak: median / max (%) | cracks T / S "
+          "| crack length (mm) | wall (s) |\n|---|--:|--:|--:|--:|--:|--:|--:|--:|---|--:|--:|--:|--:|--:|\n")
     for r in runs:
         peak, strength, first = peak_force(r), indirect_strength(r), first_crack(h, r)
         median, largest = kinetic_ratio_to_peak(h, r)
@@ -307,6 +323,7 @@ def brazilian_table(h, runs, parameter, value, form="{:.3g}"):
                f" | {cell(scaled(r['sigma_t'], MEGAPASCAL), '{:.2f}')}"
                f" | {cell(strength[0] / r['sigma_t'] if strength and r['sigma_t'] else None, '{:.2f}')}"
                f" | {first_text}"
+               f" | {cell(scaled(force_to_first_crack(h, r), KILONEWTONS), '{:.1f}')}"
                f" | {cell(scaled(median, PERCENT), '{:.2g}')} / {cell(scaled(largest, PERCENT), '{:.2g}')}"
                f" | {cell(r['cracks'].get('tensile'), '{:.0f}')} / {cell(r['cracks'].get('shear'), '{:.0f}')}"
                f" | {cell(scaled(r['length'], MILLIMETRES), '{:.1f}')} | {cell(r['wall'], '{:.0f}')} |\n")
