@@ -184,17 +184,21 @@ def draw_gauges(h, case, run_dir, out_dir, save):
     save(figure, os.path.join(out_dir, f"gauges_{case}.png"))
 
 
-def draw_brazilian_patterns(h, series, cases, out_dir, save):
-    """Per case: the pattern at the snapshot nearest its peak force and at its last snapshot."""
+def completed_runs(h, series, cases):
+    """The completed runs of a series as the sensitivity study reads them (read_run)."""
+    return [r for r in (sensitivity.read_run(h, case, [series], run_dir) for case, run_dir in cases) if r]
+
+
+def draw_brazilian_patterns(h, series, runs, out_dir, save):
+    """Per completed run: the pattern at the snapshot nearest its peak force and at its last one."""
     rows = []
-    for case, run_dir in cases:
-        snapshots = h.read_snapshots(run_dir)
-        run = sensitivity.read_run(h, case, [series], run_dir)
-        peak = sensitivity.peak_force(run) if run else None
+    for run in runs:
+        snapshots = h.read_snapshots(run["dir"])
+        peak = sensitivity.peak_force(run)
         if not snapshots or peak is None:
             continue
         at_peak = min(snapshots, key=lambda s: abs(s[0] - peak[1]))
-        rows.append((case, sensitivity.platen_speed(run), ((at_peak, "peak"), (snapshots[-1], "end"))))
+        rows.append((run["case"], sensitivity.platen_speed(run), ((at_peak, "peak"), (snapshots[-1], "end"))))
     if not rows:
         return
     figure, axes = plt.subplots(len(rows), 2, figsize=(8.0, 3.8 * len(rows)), squeeze=False)
@@ -218,10 +222,9 @@ def slit_angle(run):
     return run["scene"].get("geometry", {}).get("slit_angle")
 
 
-def brazilian_analysis(h, groups, study_dir, out_dir, save):
-    """analysis.md of the Brazilian series that have completed runs (nothing if none has)."""
-    runs = {series: [r for r in (sensitivity.read_run(h, case, [series], run_dir) for case, run_dir in cases) if r]
-            for series, cases in groups.items() if series in BRAZILIAN_SERIES}
+def brazilian_analysis(h, groups, runs, study_dir, out_dir, save):
+    """analysis.md of the Brazilian series (groups: {series: [(case, run_dir)]}, runs: {series:
+    [completed run]}), nothing if no run has completed."""
     if not any(runs.values()):
         return
     md = "# The source study: Brazilian discs\n\n"
@@ -247,17 +250,19 @@ def draw_study(args, h, save):
     os.makedirs(out_dir, exist_ok=True)
     times = [float(t) for t in args.times.split(",") if t]
     groups = series_cases(h, args.study_dir)
+    brazilian = {series: completed_runs(h, series, cases) for series, cases in groups.items()
+                 if series in BRAZILIAN_SERIES}
     for series, cases in groups.items():
         if series in IMPACT_SERIES:
             draw_counts(h, series, cases, out_dir, save)
             draw_patterns(h, series, cases, times, out_dir, save)
         elif series in BRAZILIAN_SERIES:
             draw_loading(h, series, cases, out_dir, save)
-            draw_brazilian_patterns(h, series, cases, out_dir, save)
+            draw_brazilian_patterns(h, series, brazilian[series], out_dir, save)
         for case, run_dir in cases:
             if case == args.gauge_case:
                 draw_gauges(h, case, run_dir, out_dir, save)
-    brazilian_analysis(h, groups, args.study_dir, out_dir, save)
+    brazilian_analysis(h, groups, brazilian, args.study_dir, out_dir, save)
 
 
 def register(commands, helpers, save):

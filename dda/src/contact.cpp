@@ -162,17 +162,20 @@ double corner_radius(const BlockSystem& s, double search, Index a, Index b) {
 /// The entrance line of vertex v of block p lying inside block q: the edge of v's contact of the
 /// pair the step before if it had one (switching line while it overlaps would make its gap, and
 /// the energy of its spring, jump), else the edge it lies least deep behind (for a convex block
-/// its projection falls on that edge). `kept` says which of the two it is.
-Candidate entrance_line(const View& w, Index p, Index v, Index q, bool& kept) {
-  const ContactsByVertex::Entry* before = w.w.previous_by_vertex.entry(v, p, q);
-  kept = before != nullptr;
-  if (kept) return Candidate{true, false, gap(w, v, before->edge), p, v, q, before->edge};
+/// its projection falls on that edge).
+struct EntranceLine {
+  Candidate line;
+  bool kept = false;  // the previous contact's edge (else the least-deep one)
+};
+EntranceLine entrance_line(const View& w, Index p, Index v, Index q) {
+  if (const ContactsByVertex::Entry* before = w.w.previous_by_vertex.entry(v, p, q))
+    return {Candidate{true, false, gap(w, v, before->edge), p, v, q, before->edge}, true};
   Candidate least_deep;
   for (Index e0 = w.s.begin(q); e0 < w.s.end(q); ++e0) {
     const double d = gap(w, v, e0);
     if (!least_deep.valid || d > least_deep.d) least_deep = Candidate{true, false, d, p, v, q, e0};
   }
-  return least_deep;
+  return {least_deep, false};
 }
 
 /// The one contact of the corner where vertex v of block a meets vertex u of block b, reduced to
@@ -199,17 +202,14 @@ Candidate corner_contact(const View& w, Index a, Index v, Index b, Index u, bool
     if (o[3] == (o[1] == v ? closed_edge_v : closed_edge_u)) kept = option;
   }
   const Candidate corner = kept.valid ? kept : chosen;
+  if (!shared_node || (corner.valid && corner.d <= 0.0)) return corner;
   const double dx = w.x(v) - w.x(u), dy = w.y(v) - w.y(u);
-  if (shared_node && !(corner.valid && corner.d <= 0.0) && dx * dx + dy * dy > radius * radius) {
-    const bool v_inside = inside_block(w, b, w.x(v), w.y(v)), u_inside = inside_block(w, a, w.x(u), w.y(u));
-    if (v_inside != u_inside) {
-      bool had_contact = false;
-      Candidate line = v_inside ? entrance_line(w, a, v, b, had_contact) : entrance_line(w, b, u, a, had_contact);
-      line.vv = line.shared_node = true;
-      return line;
-    }
-  }
-  return corner;
+  if (dx * dx + dy * dy <= radius * radius) return corner;
+  const bool v_inside = inside_block(w, b, w.x(v), w.y(v)), u_inside = inside_block(w, a, w.x(u), w.y(u));
+  if (v_inside == u_inside) return corner;
+  Candidate line = (v_inside ? entrance_line(w, a, v, b) : entrance_line(w, b, u, a)).line;
+  line.vv = line.shared_node = true;
+  return line;
 }
 
 /// Deepest penetration still paired between blocks a and b (kPenetrationEdgeFraction).
@@ -381,8 +381,7 @@ bool narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, c
       const double px = w.x(v), py = w.y(v);
       if (px < bx0 || px > bx1 || py < by0 || py > by1 || !inside_block(w, q, px, py)) continue;
       Candidate& held = slot_of(p, v);
-      bool kept = false;
-      const Candidate line = entrance_line(w, p, v, q, kept);
+      const auto [line, kept] = entrance_line(w, p, v, q);
       if (kept ? !held.valid || held.e0 != line.e0 : !held.valid || held.d < line.d) held = line;
     }
   }
