@@ -119,12 +119,21 @@ void write_report(const StudyKind& kind, const fs::path& out, const std::vector<
   fmt::print("wrote {}\n", (out / "study.md").string());
 }
 
+/// Every case of the study, those in `ran` as they ran (their exit status): the report of a
+/// study describes the whole study, also when --cases ran only some of it.
+std::vector<StudyCase> whole_study(std::vector<StudyCase> all, const std::vector<StudyCase>& ran) {
+  for (StudyCase& c : all)
+    for (const StudyCase& r : ran)
+      if (r.run.scene.name == c.run.scene.name) c = r;
+  return all;
+}
+
 /// --report: the report of the cases run so far (the rest marked not run), whether or not
 /// the study is still running; runs nothing.
 void report_study(const StudyKind& kind, const StudyArguments& args) {
   const fs::path out(args.out);
   const std::vector<std::string> overrides = study_overrides(args, existing_study(kind, out, "--report"));
-  write_report(kind, out, choose_cases(kind.load(overrides), args.cases, kind.command), overrides);
+  write_report(kind, out, kind.load(overrides), overrides);
 }
 
 void run_study(const StudyKind& kind, const StudyArguments& args) {
@@ -136,7 +145,8 @@ void run_study(const StudyKind& kind, const StudyArguments& args) {
     throw CommandFailed(fmt::format("{}: a study is running in {} (process {}); see --status", kind.command,
                                     out.string(), previous.value("pid", 0L)));
   const std::vector<std::string> overrides = args.resume ? study_overrides(args, previous) : args.overrides;
-  std::vector<StudyCase> cases = choose_cases(kind.load(overrides), args.cases, kind.command);
+  const std::vector<StudyCase> all = kind.load(overrides);
+  std::vector<StudyCase> cases = choose_cases(all, args.cases, kind.command);
 
   const int parallel = args.parallel > 0 ? args.parallel : std::max(1, ranks.cores_for_runs() / kThreadsPerRun);
   if (ranks.is_root()) {
@@ -154,10 +164,10 @@ void run_study(const StudyKind& kind, const StudyArguments& args) {
   }
   // The tables after every case: an interrupted study leaves those of the cases done so far.
   run_cases(runs, {kThreadsPerRun, parallel, args.checkpoint_every, overrides,
-                   [&] { write_tables(kind, out, cases, overrides, {}); }, &ranks});
+                   [&] { write_tables(kind, out, whole_study(all, cases), overrides, {}); }, &ranks});
   if (!ranks.is_root()) return;
   for (std::size_t k = 0; k < cases.size(); ++k) cases[k].run = runs[k];
-  write_report(kind, out, cases, overrides);
+  write_report(kind, out, whole_study(all, cases), overrides);
   write_study_file(out, overrides, 0);
 
   const auto failed = std::count_if(runs.begin(), runs.end(), [](const CaseRun& c) { return c.exit_code != 0; });
@@ -223,7 +233,11 @@ void add_study_options(CLI::App& command, StudyArguments& args, const std::strin
       ->check(whole_number(1, kMaxParallelRuns))
       ->excludes(status)
       ->excludes(report);
-  command.add_option("--cases", args.cases, "only these cases (comma-separated scene names)")->delimiter(',');
+  command
+      .add_option("--cases", args.cases,
+                  "run (or list) only these cases (comma-separated scene names); the report still covers every case")
+      ->delimiter(',')
+      ->excludes(report);
   command
       .add_option("--checkpoint-every", args.checkpoint_every,
                   "wall seconds between the checkpoints of each run (default: that of ddafrac run)")
