@@ -24,8 +24,9 @@ travel=5e-4            # m: the family's platen travel at every speed
 travel_tolerance=0.01  # the platen's last position is one output interval's travel short at most
 # With a quasi-static response the strain energy at a given travel does not depend on the speed
 # while the kinetic energy grows as v^2, so the ratio should fall 16x from 1 to 0.25 m/s (it fell
-# 22x at 1032 blocks, 32x here: 0.54, 0.086, 0.017; about 6 minutes on the shared 2-core machine). Bound: 4x, the v^1 law, so that a speed that changes nothing fails while
-# the ringing of the platen-disc contact (whose share does not fall as v^2) does not.
+# 22x at 1032 blocks, 32x here: 0.54, 0.086, 0.017). Bound: 4x, the v^1 law, so that a speed
+# that changes nothing fails while the ringing of the platen-disc contact (whose share does not
+# fall as v^2) does not. About 6 minutes on the shared 2-core machine.
 least_ratio_fall=4
 
 "$exe" study sensitivity --out "$study" --family rate --blocks 1900 --cases "$fast,$middle,$reference" \
