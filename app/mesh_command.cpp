@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "ddafrac/meshes/edge_lines.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "ddafrac/meshes/msh_io.hpp"
 #include "ddafrac/meshes/picture.hpp"
@@ -44,6 +45,8 @@ void run_mesh(const MeshArguments& args) {
   meshes::write_msh(dda, out / "dda.msh");
   meshes::write_mesh_png(dda, out / "dda.png");
   print_quality("DDA mesh", "blocks", quality, dda_seconds);
+  fmt::print("          longest straight line of block edges {:.1f} mm (turning {}° at most per node)\n",
+             1e3 * meshes::longest_straight_edge_line(dda), meshes::kStraightLineTurnDeg);
 
   const bool generated = !std::holds_alternative<meshes::MshFile>(scene.geometry);
   if (generated) {

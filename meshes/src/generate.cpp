@@ -18,7 +18,8 @@ namespace ddafrac::meshes {
 
 namespace {
 
-constexpr int kFrontalDelaunay = 6;           // Mesh.Algorithm; 8 (Frontal-Delaunay quads) crashes 4.8
+constexpr int kGmshFrontalDelaunay = 6;       // Mesh.Algorithm; 8 (Frontal-Delaunay quads) crashes 4.8
+constexpr int kGmshDelaunay = 5;
 constexpr int kBlossomFullQuad = 3;           // Mesh.RecombinationAlgorithm
 constexpr double kSlotEndSizePerWidth = 1.0;  // element size at the slot ends / slot width
 constexpr double kSizeGrowthRate = 0.4;       // m of size per m of distance from the slot ends
@@ -37,8 +38,9 @@ double equilateral_size(double area, double count) { return std::sqrt(4.0 * area
 /// short end faces do not make needle triangles.
 class DiscSizing {
  public:
-  explicit DiscSizing(const detail::DiscModel& model) : model_(model) {
-    gmsh::option::setNumber("Mesh.Algorithm", kFrontalDelaunay);
+  DiscSizing(const detail::DiscModel& model, MeshAlgorithm algorithm) : model_(model) {
+    gmsh::option::setNumber("Mesh.Algorithm",
+                            algorithm == MeshAlgorithm::Delaunay ? kGmshDelaunay : kGmshFrontalDelaunay);
     gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
     gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
     gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
@@ -165,7 +167,7 @@ Mesh generate_dda_mesh(const Geometry& geometry, const MeshControl& control, Qua
   detail::GmshSession session;
   return detail::gmsh_call("meshing the DDA disc", [&] {
     const detail::DiscModel model = detail::build_disc_model(geometry);
-    const DiscSizing sizing(model);
+    const DiscSizing sizing(model, control.algorithm);
     const double largest_size = kLargestSizePerModelSide * std::sqrt(model.area);
     SizeSearch search(equilateral_size(model.area, control.target_blocks), control.target_blocks, largest_size);
     std::size_t count = 0;
@@ -202,7 +204,7 @@ Mesh generate_fem_mesh(const Geometry& geometry, double element_size, FemCells c
   detail::GmshSession session;
   return detail::gmsh_call("meshing the FEM disc", [&] {
     const detail::DiscModel model = detail::build_disc_model(geometry);
-    const DiscSizing sizing(model);
+    const DiscSizing sizing(model, MeshAlgorithm::FrontalDelaunay);
     if (cells == FemCells::Quadrilaterals) {
       gmsh::option::setNumber("Mesh.RecombineAll", 1);
       gmsh::option::setNumber("Mesh.RecombinationAlgorithm", kBlossomFullQuad);

@@ -233,6 +233,11 @@ meshes::MeshControl parse_mesh(TableReader t, bool generated) {
   control.block_tolerance =
       t.number("tolerance", NumberRule::open(0.0, 0.5, "relative"), Need::Optional).value_or(kDefaultBlockTolerance);
   if (!generated && t.has("blocks")) t.problem("blocks", "only a generated geometry has a target block count");
+  if (auto algorithm = t.choice("algorithm", {"frontal-delaunay", "delaunay"}, Need::Optional)) {
+    control.algorithm =
+        *algorithm == "delaunay" ? meshes::MeshAlgorithm::Delaunay : meshes::MeshAlgorithm::FrontalDelaunay;
+    if (!generated) t.problem("algorithm", "only a generated geometry is meshed here");
+  }
   t.reject_unknown_keys();
   return control;
 }

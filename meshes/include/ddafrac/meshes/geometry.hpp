@@ -64,10 +64,16 @@ struct MshFile {
 
 using Geometry = std::variant<PlainDisc, FlattenedDisc, SlitDisc, ImpactDisc, MshFile>;
 
+/// gmsh's 2-D algorithm for the DDA mesh. Frontal-Delaunay lays near-equilateral triangles in
+/// rows whose edges line up into straight lines across the disc, and a crack running along block
+/// edges can follow such a line; Delaunay gives less regular triangles whose edges line up less.
+enum class MeshAlgorithm { FrontalDelaunay, Delaunay };
+
 /// How fine to mesh. The DDA mesh is controlled by the number of triangles ("blocks") in the
 /// disc; the generator iterates the element size until the count is within the tolerance.
 struct MeshControl {
   int target_blocks = 2000;
+  MeshAlgorithm algorithm = MeshAlgorithm::FrontalDelaunay;
   double block_tolerance = 0.02;  // relative; the study's counts must be hit within ±5%
   int max_iterations = 12;
 };
