@@ -260,7 +260,7 @@ def mesh_section(h, runs, figures, save):
         md += measure_table(discs, "blocks", lambda r: r["blocks"], "{:.0f}") + "\n"
         md += observed_orders(discs, lambda r: r["blocks"] ** -0.5, "meshes") + "\n"
         for what, force in (("Peak force", lambda r: peak_force(r)[0] if peak_force(r) else None),
-                            ("Largest force up to the first crack", lambda r: force_to_first_crack(h, r))):
+                            ("Largest force up to the first crack", lambda r: force_to_first_crack(h, r, first_crack(h, r)))):
             forces = [f for f in map(force, discs) if f is not None]
             if len(forces) >= 2:
                 md += (f"{what} from the coarsest to the finest mesh: "
@@ -282,11 +282,10 @@ def first_crack(h, run):
     return cracks["type"][0], math.hypot(x, y) / (diameter / 2.0), float(cracks["t"][0])
 
 
-def force_to_first_crack(h, run):
-    """The largest platen force (N/m) up to the first crack (the crack-initiation load), or None.
-    Unlike the peak force, which comes after cracking has begun, it does not depend on how the
-    cracks grow on a given mesh."""
-    first = first_crack(h, run)
+def force_to_first_crack(h, run, first):
+    """The largest platen force (N/m) up to the first crack `first` (first_crack's answer: the
+    crack-initiation load), or None. Unlike the peak force, which comes after cracking has begun,
+    it does not depend on how the cracks grow on a given mesh."""
     path = os.path.join(run["dir"], "loading.csv")
     if first is None or not os.path.exists(path):
         return None
@@ -323,7 +322,7 @@ def brazilian_table(h, runs, parameter, value, form="{:.3g}"):
                f" | {cell(scaled(r['sigma_t'], MEGAPASCAL), '{:.2f}')}"
                f" | {cell(strength[0] / r['sigma_t'] if strength and r['sigma_t'] else None, '{:.2f}')}"
                f" | {first_text}"
-               f" | {cell(scaled(force_to_first_crack(h, r), KILONEWTONS), '{:.1f}')}"
+               f" | {cell(scaled(force_to_first_crack(h, r, first), KILONEWTONS), '{:.1f}')}"
                f" | {cell(scaled(median, PERCENT), '{:.2g}')} / {cell(scaled(largest, PERCENT), '{:.2g}')}"
                f" | {cell(r['cracks'].get('tensile'), '{:.0f}')} / {cell(r['cracks'].get('shear'), '{:.0f}')}"
                f" | {cell(scaled(r['length'], MILLIMETRES), '{:.1f}')} | {cell(r['wall'], '{:.0f}')} |\n")
