@@ -65,7 +65,12 @@ def scaled(value, factor):
 
 
 def cell(value, form="{:.3g}"):
-    return "–" if value is None else form.format(value)
+    if value is None:
+        return "–"
+    text = form.format(value)
+    # A "g" format turns 1050 into 1.05e+03 once it has more digits than its precision; a table
+    # reads the rounded number better.
+    return f"{float(text):.0f}" if "e+" in text else text
 
 
 def flattened_disc_factor(flat_angle_degrees):
