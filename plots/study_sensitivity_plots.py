@@ -163,7 +163,9 @@ def observed_orders(runs, step, what):
             md += f"| {label} | – | – | not measured in every run |\n"
             continue
         changes = [abs(b - a) / max(abs(b), 1e-30) for a, b in zip(values, values[1:])]
-        order, verdict = None, "two meshes only"
+        order = None
+        verdict = (f"unchanged (within {UNCHANGED * PERCENT:g}%), two {what} only" if changes[-1] <= UNCHANGED
+                   else f"two {what} only")
         if len(values) >= 3:
             d1, d2 = abs(values[-2] - values[-3]), abs(values[-1] - values[-2])
             ratio = step(runs[-3]) / step(runs[-2])
