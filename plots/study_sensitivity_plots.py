@@ -244,8 +244,12 @@ def draw_measures(runs, x, xlabel, logx, title, path, save):
             axis.text(0.5, 0.5, "not reached in any run", ha="center", va="center", transform=axis.transAxes)
         axis.set_title(label, fontsize="medium")
         axis.set_xlabel(xlabel)
-        if logx:
+        if logx and points:
+            # Ticks at the runs themselves: the default minor labels of a log axis over less
+            # than a decade run into one another.
             axis.set_xscale("log")
+            axis.set_xticks(xs, [f"{v:g}" for v in xs])
+            axis.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         axis.grid(alpha=0.3)
     axes.flat[-1].axis("off")
     figure.suptitle(title)
