@@ -228,6 +228,14 @@ def gauge_peaks(h, run):
     return {name: float(sigma1[names == name].max()) for name in dict.fromkeys(gauges["gauge"])}
 
 
+def log_axis_at(axis, xs):
+    """A log x axis ticked at the runs' own values `xs`: the default minor labels of a log axis
+    over less than a decade run into one another."""
+    axis.set_xscale("log")
+    axis.set_xticks(xs, [f"{v:g}" for v in xs])
+    axis.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+
+
 def draw_measures(runs, x, xlabel, logx, title, path, save):
     figure, axes = plt.subplots(2, 4, figsize=(15, 8))
     xs = [x(r) for r in runs]
@@ -245,11 +253,7 @@ def draw_measures(runs, x, xlabel, logx, title, path, save):
         axis.set_title(label, fontsize="medium")
         axis.set_xlabel(xlabel)
         if logx and points:
-            # Ticks at the runs themselves: the default minor labels of a log axis over less
-            # than a decade run into one another.
-            axis.set_xscale("log")
-            axis.set_xticks(xs, [f"{v:g}" for v in xs])
-            axis.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+            log_axis_at(axis, xs)
         axis.grid(alpha=0.3)
     axes.flat[-1].axis("off")
     figure.suptitle(title)
@@ -397,9 +401,11 @@ def rate_section(h, runs, figures, save):
     points = [(platen_speed(r), peak_force(r)[0] * KILONEWTONS) for r in dynamic if peak_force(r)]
     if points:
         peaks.plot(*zip(*points), "o-", label="dynamic")
+        log_axis_at(peaks, [speed for speed, _ in points])
+    else:
+        peaks.set_xscale("log")
     if static and peak_force(static[0]):
         peaks.axhline(peak_force(static[0])[0] * KILONEWTONS, color="k", linestyle="--", label="static")
-    peaks.set_xscale("log")
     peaks.set_xlabel("platen speed (m/s)")
     peaks.set_ylabel("peak force (kN/m)")
     peaks.legend()
