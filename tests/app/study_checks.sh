@@ -29,6 +29,17 @@ check_run() {
   echo "$name: $(summary_value "$run" '" ".join(map(str, [s["cracks"]["tensile"], "tensile,", s["cracks"]["shear"], "shear,", round(1e3*(s["crack_metrics"]["crack_length_tensile"]+s["crack_metrics"]["crack_length_shear"]),2), "mm,", s["crack_metrics"]["fragments"], "fragments, energy error", s["energy"]["largest_balance_error"], ", wall", round(s["wall_time"]["total"],1), "s"]))')"
 }
 
+# A stiff-joint case (the penalty families) got a dt_max shorter than SCENE_DT (s, its base
+# scene's) and its run was not warned that dt_max leaves its contact period unresolved.
+check_contact_period_resolved() {
+  local name=$1 run=$2 scene_dt=$3 dt
+  dt=$(summary_value "$run" 's["scene"]["dt_max"]')
+  python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) < float(sys.argv[2]) else 1)' "$dt" "$scene_dt" ||
+    fail "$name kept dt_max = $dt s"
+  grep -q "steps per period" "$run/run.log" && fail "$name was warned that its dt_max does not resolve its contacts"
+  echo "$name: dt_max = $dt s, no contact-period warning"
+}
+
 # The run of scene file SCENE (with the extra `ddafrac run` arguments after it) on 2 threads
 # writes the same history.csv, cracks.csv and fragments.csv as RUN did on 1.
 check_same_on_two_threads() {
