@@ -40,7 +40,17 @@ std::optional<double> peak_force(const json& summary) {
   return peak;
 }
 
-std::string table_row(const StudyCase& c) {
+/// A row of the case table, and whether its times are a static run's load parameter.
+struct TableRow {
+  std::string text;
+  bool pseudo_time = false;
+};
+
+/// Marks a static run's times: there, t is a load parameter (the platen's travel over its
+/// speed), not a time, so it is printed in s and never as µs of a dynamic run.
+constexpr const char* kPseudoTimeMark = "†";
+
+TableRow table_row(const StudyCase& c) {
   const json s = read_summary(c.run.run_dir);
   if (s.is_discarded()) {
     const std::string state = c.run.exit_code > 0 ? fmt::format(
@@ -48,8 +58,12 @@ std::string table_row(const StudyCase& c) {
                                                         "see its run.log)",
                                                         c.run.exit_code)
                                                   : std::string("not run");
-    return fmt::format("| {} | {} | {} |{}\n", c.run.scene.name, c.series, state, std::string(14, '|'));
+    return {fmt::format("| {} | {} | {} |{}\n", c.run.scene.name, c.series, state, std::string(14, '|'))};
   }
+  const bool pseudo_time = s.contains("scene") && s["scene"].value("mode", "") == "static";
+  const auto time_cell = [pseudo_time](const std::optional<double>& t) {
+    return pseudo_time ? cell(t, "{:.4g} s") + (t ? kPseudoTimeMark : "") : cell(t, "{:.1f}", kMicrosecondsPerSecond);
+  };
   const json metrics = s.value("crack_metrics", json::object());
   std::optional<double> length;
   if (const auto t = number_at(metrics, {"crack_length_tensile"}))
@@ -61,19 +75,22 @@ std::string table_row(const StudyCase& c) {
   for (const char* kind : {"cuts_displacement", "cuts_open_close", "cuts_solver"})
     if (const auto n = number_at(s, {"dt", kind})) cuts = cuts.value_or(0.0) + *n;
   const std::string reason = s.contains("exit") ? s["exit"].value("reason", "?") : "?";
-  return fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} / {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+  const std::string text = fmt::format(
+      "| {} | {} | {} | {} | {} | {} | {} | {} / {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
                      c.run.scene.name, c.series, cell(number_at(s, {"scene", "blocks"}), "{:.0f}"),
                      cell(number_at(s, {"steps"}), "{:.0f}"), cell(cuts, "{:.0f}"),
                      cell(number_at(s, {"wall_time", "total"}), "{:.1f}"),
-                     cell(number_at(s, {"simulated_time"}), "{:.0f}", kMicrosecondsPerSecond),
+                     pseudo_time ? time_cell(number_at(s, {"simulated_time"}))
+                                 : cell(number_at(s, {"simulated_time"}), "{:.0f}", kMicrosecondsPerSecond),
                      cell(number_at(s, {"cracks", "tensile"}), "{:.0f}"),
                      cell(number_at(s, {"cracks", "shear"}), "{:.0f}"), cell(length, "{:.1f}", kMillimetresPerMetre),
                      cell(number_at(metrics, {"fragments"}), "{:.0f}"), cell(largest, "{:.1f}", kPercent),
-                     cell(number_at(metrics, {"first_crack_time"}), "{:.1f}", kMicrosecondsPerSecond),
-                     cell(number_at(metrics, {"first_through_crack_time"}), "{:.1f}", kMicrosecondsPerSecond),
+                     time_cell(number_at(metrics, {"first_crack_time"})),
+                     time_cell(number_at(metrics, {"first_through_crack_time"})),
                      cell(peak_force(s), "{:.2f}", kKilonewtonsPerNewton),
                      cell(number_at(s, {"energy", "largest_balance_error"}), "{:.2g}", kPercent),
                      cell(number_at(s, {"missed_contacts", "count"}), "{:.0f}"), reason);
+  return {text, pseudo_time};
 }
 
 /// The crack-metric definitions as the runs wrote them (so the report cannot drift from the code).
@@ -98,7 +115,17 @@ std::string case_table(const std::vector<StudyCase>& cases) {
       "| fragments | largest fragment (%) | first crack (µs) | through crack (µs) | peak force (kN/m) "
       "| largest energy-balance error (%) | missed contacts | exit |\n";
   md += "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
-  for (const StudyCase& c : cases) md += table_row(c);
+  bool pseudo_time = false;
+  for (const StudyCase& c : cases) {
+    const TableRow row = table_row(c);
+    md += row.text;
+    pseudo_time = pseudo_time || row.pseudo_time;
+  }
+  if (pseudo_time)
+    md += fmt::format(
+        "\n{} static mode: t is a load parameter, the platen's travel over its speed (s), not a time; "
+        "compare platen travel, not t, with the dynamic runs.\n",
+        kPseudoTimeMark);
   return md;
 }
 
