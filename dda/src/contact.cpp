@@ -756,46 +756,36 @@ const Contact* swapped_corner(const std::vector<Contact>& previous, const Contac
 
 }  // namespace
 
-std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& previous,
-                                                 const ContactsByVertex& previous_by_vertex,
-                                                 std::vector<Contact>& current, const std::vector<Joint>& joints,
-                                                 const BlockSystem& blocks) {
-  const auto n = static_cast<std::int64_t>(current.size());
-  std::vector<std::uint8_t> carried(previous.size(), 0);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t k = 0; k < n; ++k) {
-    Contact& c = current[k];
-    // New contacts touching or overlapping start closed; the copies of a shared mesh node
-    // start at exactly zero gap and stay open until they overlap.
-    const bool touching = c.shared_node ? c.d0 < 0.0 : c.d0 <= 0.0;
-    c.state = touching || c.bonded(joints) ? ContactState::Locked : ContactState::Open;
-    const Index same = previous_by_vertex.find(c.vertex, c.vblock, c.eblock);
-    const Contact* p = same >= 0 ? &previous[static_cast<std::size_t>(same)] : nullptr;
-    const bool swapped = !p && (p = swapped_corner(previous, previous_by_vertex, c)) != nullptr;
-    if (!p) continue;
-    c.carried = true;
-#pragma omp atomic write
-    carried[static_cast<std::size_t>(p - previous.data())] = 1;
-    c.state = p->state;
-    c.normal_force = p->normal_force;
-    c.shear_force = p->shear_force;
-    c.slip = p->slip;
-    c.cohesive = p->cohesive;
-    c.cohesive_length = p->cohesive_length;
-    c.slide_sign = p->slide_sign;
-    c.stored_normal = p->stored_normal;
-    c.stored_shear = p->stored_shear;
-    c.was_bonded = p->was_bonded;
-    if (swapped && p->ks > 0.0) {
-      // Measured along the other block's edge the relative slip has the same sign, so the shear
-      // spring keeps its elastic extension f_s/ks: the reference point sits that far behind.
-      const double l = std::hypot(blocks.vx[c.edge1] - blocks.vx[c.edge0], blocks.vy[c.edge1] - blocks.vy[c.edge0]);
-      c.ref_t -= p->shear_force / p->ks / l;
-    } else if (p->edge0 == c.edge0 && p->edge1 == c.edge1) {
-      c.ref_t = p->ref_t;
-    }
+const Contact* carry_contact_state(const std::vector<Contact>& previous, const ContactsByVertex& previous_by_vertex,
+                                   Contact& c, const std::vector<Joint>& joints, const BlockSystem& blocks) {
+  // New contacts touching or overlapping start closed; the copies of a shared mesh node
+  // start at exactly zero gap and stay open until they overlap.
+  const bool touching = c.shared_node ? c.d0 < 0.0 : c.d0 <= 0.0;
+  c.state = touching || c.bonded(joints) ? ContactState::Locked : ContactState::Open;
+  const Index same = previous_by_vertex.find(c.vertex, c.vblock, c.eblock);
+  const Contact* p = same >= 0 ? &previous[static_cast<std::size_t>(same)] : nullptr;
+  const bool swapped = !p && (p = swapped_corner(previous, previous_by_vertex, c)) != nullptr;
+  if (!p) return nullptr;
+  c.carried = true;
+  c.state = p->state;
+  c.normal_force = p->normal_force;
+  c.shear_force = p->shear_force;
+  c.slip = p->slip;
+  c.cohesive = p->cohesive;
+  c.cohesive_length = p->cohesive_length;
+  c.slide_sign = p->slide_sign;
+  c.stored_normal = p->stored_normal;
+  c.stored_shear = p->stored_shear;
+  c.was_bonded = p->was_bonded;
+  if (swapped && p->ks > 0.0) {
+    // Measured along the other block's edge the relative slip has the same sign, so the shear
+    // spring keeps its elastic extension f_s/ks: the reference point sits that far behind.
+    const double l = std::hypot(blocks.vx[c.edge1] - blocks.vx[c.edge0], blocks.vy[c.edge1] - blocks.vy[c.edge0]);
+    c.ref_t -= p->shear_force / p->ks / l;
+  } else if (p->edge0 == c.edge0 && p->edge1 == c.edge1) {
+    c.ref_t = p->ref_t;
   }
-  return carried;
+  return p;
 }
 
 void build_contact_topology(ContactSet& set, std::size_t nb) {

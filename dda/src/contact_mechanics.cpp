@@ -6,32 +6,26 @@
 
 namespace ddafrac::dda {
 
-void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem& blocks, const scene::Scene& scene) {
-  const auto n = static_cast<std::int64_t>(contacts.size());
-  std::vector<double> tan_phi;  // per joint set
-  for (const scene::JointSet& js : scene.joint_sets) tan_phi.push_back(std::tan(js.friction_angle));
-#pragma omp parallel for schedule(static)
-  for (std::int64_t k = 0; k < n; ++k) {
-    Contact& c = contacts[k];
-    Index set = -1;
-    if (c.bonded(blocks.joints))
-      set = blocks.joints[static_cast<std::size_t>(c.joint)].joint_set;
-    else
-      set = static_cast<Index>(scene.real_joints);
-    c.joint_set = set;
-    const scene::JointSet& js = scene.joint_sets[static_cast<std::size_t>(set)];
-    c.kn = js.normal_stiffness;
-    c.ks = js.shear_stiffness;
-    c.tan_phi = tan_phi[static_cast<std::size_t>(set)];
-    c.cohesion = js.cohesion;
-    c.tensile_strength = js.tensile_strength;
-    // Two corners meeting at a shared mesh node have no face for friction to act along (the
-    // reference line is one of four edges picked by the angle rules): the contact only keeps
-    // them from overlapping (docs/design.md §4.6).
-    // Frictionless means no shear spring either: with ks > 0 and tanφ = 0 the contact would
-    // flip between locked and sliding at every open-close iteration.
-    if (c.shared_node) c.tan_phi = c.ks = 0.0;
-  }
+ContactProperties::ContactProperties(const scene::Scene& scene) : scene_(scene) {
+  for (const scene::JointSet& js : scene.joint_sets) tan_phi_.push_back(std::tan(js.friction_angle));
+}
+
+void ContactProperties::assign(Contact& c, const BlockSystem& blocks) const {
+  const Index set = c.bonded(blocks.joints) ? blocks.joints[static_cast<std::size_t>(c.joint)].joint_set
+                                            : static_cast<Index>(scene_.real_joints);
+  c.joint_set = set;
+  const scene::JointSet& js = scene_.joint_sets[static_cast<std::size_t>(set)];
+  c.kn = js.normal_stiffness;
+  c.ks = js.shear_stiffness;
+  c.tan_phi = tan_phi_[static_cast<std::size_t>(set)];
+  c.cohesion = js.cohesion;
+  c.tensile_strength = js.tensile_strength;
+  // Two corners meeting at a shared mesh node have no face for friction to act along (the
+  // reference line is one of four edges picked by the angle rules): the contact only keeps
+  // them from overlapping (docs/design.md §4.6).
+  // Frictionless means no shear spring either: with ks > 0 and tanφ = 0 the contact would
+  // flip between locked and sliding at every open-close iteration.
+  if (c.shared_node) c.tan_phi = c.ks = 0.0;
 }
 
 double cohesive_length(const Contact& c, const BlockSystem& s, double angle_tolerance) {

@@ -12,7 +12,8 @@ namespace ddafrac::dda::detail {
 constexpr std::int64_t kSumChunk = 256;
 
 /// Σ term(i) for i in [0, n), bit-identical for any OMP_NUM_THREADS. T is any value-initialised
-/// type with +=: a double, or a record of several sums taken in one pass.
+/// type with +=: a double, or a record of several sums taken in one pass. term(i) may change
+/// item i (and nothing else), so that one pass can both sum and update a list.
 template <class T = double, class F>
 T chunked_sum(std::int64_t n, F&& term) {
   const std::int64_t chunks = (n + kSumChunk - 1) / kSumChunk;

@@ -16,6 +16,20 @@ namespace ddafrac::dda {
 namespace {
 using detail::chunked_sum;
 
+/// What committing the contacts of a step adds up: their step energy, the cohesive contacts that
+/// failed, and whether any slides.
+struct ContactCommit {
+  StepEnergy energy;
+  long cohesion_lost = 0;
+  bool sliding = false;
+  ContactCommit& operator+=(const ContactCommit& o) {
+    energy += o.energy;
+    cohesion_lost += o.cohesion_lost;
+    sliding = sliding || o.sliding;
+    return *this;
+  }
+};
+
 class Timer {
  public:
   explicit Timer(double& sink) : sink_(sink), start_(omp_get_wtime()) {}
@@ -110,26 +124,26 @@ void Engine::trouble(const std::string& what) const {
 
 void Engine::detect() {
   std::vector<Contact>& found = spare_contacts_;  // the list of the step before last: storage reused
-  detect_contacts(blocks_, options_.detection, detection_, set_.contacts, found);
+  const std::vector<Contact>& previous = set_.contacts;
+  detect_contacts(blocks_, options_.detection, detection_, previous, found);
   stats_.pair_list_builds = detection_.pair_list_builds;
-  const std::vector<std::uint8_t> carried =
-      transfer_contact_state(set_.contacts, detection_.previous_by_vertex, found, blocks_.joints, blocks_);
-  ledger_.total += chunked_sum<StepEnergy>(static_cast<std::int64_t>(carried.size()), [&](std::int64_t k) {
-    const Contact& vanished = set_.contacts[k];
-    return carried[k] ? StepEnergy{} : released_energy(vanished, vanished.bonded(blocks_.joints));
-  });
-  assign_contact_properties(found, blocks_, scene_);
-  std::swap(set_.contacts, found);
-  build_contact_topology(set_, blocks_.block_count());
-  const auto nc = static_cast<std::int64_t>(set_.contacts.size());
-  saved_slide_sign_.resize(set_.contacts.size());
+  const ContactProperties properties(scene_);
+  std::vector<std::uint8_t> carried(previous.size(), 0);  // per previous contact: carried on or vanished
+  const auto nc = static_cast<std::int64_t>(found.size());
+  saved_slide_sign_.resize(found.size());
   const bool first = step_ == 0;
   long missed = 0, cohesive = 0, overlapping = 0;
   double deepest = 0.0, deepest_overlap = 0.0;
+  // One pass over the new records (each is read and written once per step, not once per task).
 #pragma omp parallel for schedule(static) reduction(+ : missed, cohesive, overlapping) \
     reduction(max : deepest, deepest_overlap)
   for (std::int64_t k = 0; k < nc; ++k) {
-    Contact& c = set_.contacts[k];
+    Contact& c = found[k];
+    if (const Contact* p = carry_contact_state(previous, detection_.previous_by_vertex, c, blocks_.joints, blocks_)) {
+#pragma omp atomic write
+      carried[static_cast<std::size_t>(p - previous.data())] = 1;
+    }
+    properties.assign(c, blocks_);
     const bool bonded = c.bonded(blocks_.joints);
     if (bonded) c.state = ContactState::Locked;
     if (first && !bonded && c.state != ContactState::Open) start_cohesive(c);
@@ -149,6 +163,12 @@ void Engine::detect() {
     linearise_contact(c, blocks_);
     saved_slide_sign_[k] = c.slide_sign;
   }
+  ledger_.total += chunked_sum<StepEnergy>(static_cast<std::int64_t>(carried.size()), [&](std::int64_t k) {
+    const Contact& vanished = previous[k];
+    return carried[k] ? StepEnergy{} : released_energy(vanished, vanished.bonded(blocks_.joints));
+  });
+  std::swap(set_.contacts, found);
+  build_contact_topology(set_, blocks_.block_count());
   if (nc > 0) active_.contacts = true;
   if (first) active_.cohesion = cohesive > 0;
   stats_.missed_contacts += missed;
@@ -183,25 +203,24 @@ void Engine::accept(double dt) {
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
   const auto nc = static_cast<std::int64_t>(set_.contacts.size());
   ledger_.total += block_step_energy(dt);
-  ledger_.total += chunked_sum<StepEnergy>(nc, [&](std::int64_t k) {
-    const Contact& c = set_.contacts[k];
-    return contact_step_energy(c, c.bonded(blocks_.joints));
-  });
-  bool sliding = false;
-  long cohesion_lost = 0;
-#pragma omp parallel for schedule(static) reduction(|| : sliding) reduction(+ : cohesion_lost)
-  for (std::int64_t k = 0; k < nc; ++k) {
+  // One pass over the contacts: each term books a contact's step energy and then commits it
+  // (the term touches its own contact only, so the chunked sum stays thread-count independent).
+  const ContactCommit committed = chunked_sum<ContactCommit>(nc, [&](std::int64_t k) {
     Contact& c = set_.contacts[k];
-    if (c.cohesion_lost) ++cohesion_lost;
+    ContactCommit one;
+    one.energy = contact_step_energy(c, c.bonded(blocks_.joints));
+    one.cohesion_lost = c.cohesion_lost ? 1 : 0;
     commit_contact(c);
     const ContactEnergy stored = contact_energy(c);
     c.stored_normal = stored.normal;
     c.stored_shear = stored.shear;
     c.was_bonded = c.bonded(blocks_.joints);
-    if (c.state == ContactState::Sliding) sliding = true;
-  }
-  if (sliding) active_.friction = true;
-  stats_.cohesion_failures += cohesion_lost;
+    one.sliding = c.state == ContactState::Sliding;
+    return one;
+  });
+  ledger_.total += committed.energy;
+  if (committed.sliding) active_.friction = true;
+  stats_.cohesion_failures += committed.cohesion_lost;
   const bool dynamic = active_.dynamic;
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {

@@ -185,23 +185,21 @@ struct DetectionWorkspace {
 /// previous step's contacts (sorted, as returned) only decide which reference line a closed
 /// vertex-vertex corner, or a vertex inside the other block, keeps; work.previous_by_vertex is
 /// left indexing them for
-/// transfer_contact_state. Deterministic: the output is sorted by (low block, high block,
+/// carry_contact_state. Deterministic: the output is sorted by (low block, high block,
 /// vertex) whatever the threads.
 /// `found` is overwritten; its storage is reused (pass the list of the step before last).
 void detect_contacts(const BlockSystem& blocks, const DetectionParams& params, DetectionWorkspace& work,
                      const std::vector<Contact>& previous, std::vector<Contact>& found);
 
-/// Carries state (state, reference point, forces, slip, cohesion) from the previous list to contacts of
-/// the same vertex and block pair, or of the same vertex-vertex corner with vertex and edge
-/// swapped; new contacts start closed (locked) if they touch or are bonded joints, else open (a
-/// broken joint starts like a contact that was never bonded).
-/// Returns, per previous contact, whether some current contact carried its state (1) or it
-/// vanished (0). `previous_by_vertex` indexes `previous` (DetectionWorkspace after detection).
-/// (docs/design.md §4.7)
-std::vector<std::uint8_t> transfer_contact_state(const std::vector<Contact>& previous,
-                                                 const ContactsByVertex& previous_by_vertex,
-                                                 std::vector<Contact>& current, const std::vector<Joint>& joints,
-                                                 const BlockSystem& blocks);
+/// Carries state (state, reference point, forces, slip, cohesion) to the current contact `c` from
+/// the previous list's contact of the same vertex and block pair, or of the same vertex-vertex
+/// corner with vertex and edge swapped; a new contact starts closed (locked) if it touches or is a
+/// bonded joint, else open (a broken joint starts like a contact that was never bonded).
+/// Returns the previous contact it carried, or null if `c` is new. `previous_by_vertex` indexes
+/// `previous` (DetectionWorkspace after detection). Reads only `c` of the current list, so the
+/// contacts of a list can be carried in parallel. (docs/design.md §4.7)
+const Contact* carry_contact_state(const std::vector<Contact>& previous, const ContactsByVertex& previous_by_vertex,
+                                   Contact& c, const std::vector<Joint>& joints, const BlockSystem& blocks);
 
 /// Fills pairs and per-block lists of a sorted contact list.
 void build_contact_topology(ContactSet& set, std::size_t block_count);

@@ -10,10 +10,19 @@
 
 namespace ddafrac::dda {
 
-/// Stiffness and friction of every contact from its joint set (bonded joints: their virtual
-/// joint set; others, broken joints included: the scene's real joints). kn and ks are the joint
-/// set's (the scene parser fills in their defaults, scene/defaults.hpp).
-void assign_contact_properties(std::vector<Contact>& contacts, const BlockSystem& blocks, const scene::Scene& scene);
+/// Stiffness and friction of contacts from their joint set (bonded joints: their virtual joint
+/// set; others, broken joints included: the scene's real joints). kn and ks are the joint set's
+/// (the scene parser fills in their defaults, scene/defaults.hpp).
+class ContactProperties {
+ public:
+  explicit ContactProperties(const scene::Scene& scene);
+  /// Sets c's joint set and properties; reads only c (contacts can be assigned in parallel).
+  void assign(Contact& c, const BlockSystem& blocks) const;
+
+ private:
+  const scene::Scene& scene_;
+  std::vector<double> tan_phi_;  // per joint set
+};
 
 /// l_c of a cohesive contact: half the overlap of the reference edge with the vertex's own edge
 /// that lies along it (within `angle_tolerance`, rad). A face bonded along its length has a
