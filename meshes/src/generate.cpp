@@ -21,7 +21,6 @@ namespace {
 constexpr int kGmshFrontalDelaunay = 6;       // Mesh.Algorithm; 8 (Frontal-Delaunay quads) crashes 4.8
 constexpr int kGmshDelaunay = 5;
 constexpr int kBlossomFullQuad = 3;           // Mesh.RecombinationAlgorithm
-constexpr double kSlotEndSizePerWidth = 1.0;  // element size at the slot ends / slot width
 constexpr double kSizeGrowthRate = 0.4;       // m of size per m of distance from the slot ends
 constexpr double kMinSizeExponent = 1.0;      // bounds of the fitted N ~ h^-p law
 constexpr double kMaxSizeExponent = 3.0;
@@ -38,9 +37,10 @@ double equilateral_size(double area, double count) { return std::sqrt(4.0 * area
 /// short end faces do not make needle triangles.
 class DiscSizing {
  public:
-  DiscSizing(const detail::DiscModel& model, MeshAlgorithm algorithm) : model_(model) {
+  DiscSizing(const detail::DiscModel& model, const MeshControl& control)
+      : model_(model), slot_end_size_(control.slot_end_size_per_width * model.slot_width) {
     gmsh::option::setNumber("Mesh.Algorithm",
-                            algorithm == MeshAlgorithm::Delaunay ? kGmshDelaunay : kGmshFrontalDelaunay);
+                            control.algorithm == MeshAlgorithm::Delaunay ? kGmshDelaunay : kGmshFrontalDelaunay);
     gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
     gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
     gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
@@ -57,7 +57,7 @@ class DiscSizing {
   void set(double size) const {
     gmsh::option::setNumber("Mesh.MeshSizeMax", size);
     if (threshold_ == 0) return;
-    const double end_size = std::min(size, kSlotEndSizePerWidth * model_.slot_width);
+    const double end_size = std::min(size, slot_end_size_);
     gmsh::model::mesh::field::setNumber(threshold_, "SizeMin", end_size);
     gmsh::model::mesh::field::setNumber(threshold_, "SizeMax", size);
     gmsh::model::mesh::field::setNumber(threshold_, "DistMax", (size - end_size) / kSizeGrowthRate);
@@ -65,6 +65,7 @@ class DiscSizing {
 
  private:
   const detail::DiscModel& model_;
+  double slot_end_size_;  // m
   int threshold_ = 0;
 };
 
@@ -167,7 +168,7 @@ Mesh generate_dda_mesh(const Geometry& geometry, const MeshControl& control, Qua
   detail::GmshSession session;
   return detail::gmsh_call("meshing the DDA disc", [&] {
     const detail::DiscModel model = detail::build_disc_model(geometry);
-    const DiscSizing sizing(model, control.algorithm);
+    const DiscSizing sizing(model, control);
     const double largest_size = kLargestSizePerModelSide * std::sqrt(model.area);
     SizeSearch search(equilateral_size(model.area, control.target_blocks), control.target_blocks, largest_size);
     std::size_t count = 0;
@@ -204,7 +205,7 @@ Mesh generate_fem_mesh(const Geometry& geometry, double element_size, FemCells c
   detail::GmshSession session;
   return detail::gmsh_call("meshing the FEM disc", [&] {
     const detail::DiscModel model = detail::build_disc_model(geometry);
-    const DiscSizing sizing(model, MeshAlgorithm::FrontalDelaunay);
+    const DiscSizing sizing(model, MeshControl{});  // the default sizing: Frontal-Delaunay, tips at one slot width
     if (cells == FemCells::Quadrilaterals) {
       gmsh::option::setNumber("Mesh.RecombineAll", 1);
       gmsh::option::setNumber("Mesh.RecombinationAlgorithm", kBlossomFullQuad);

@@ -241,3 +241,38 @@ BOOST_AUTO_TEST_CASE(invalid_geometry_is_a_mesh_error) {
   bad.target_blocks = 0;
   BOOST_CHECK_THROW(generate_dda_mesh(PlainDisc{}, bad), MeshError);
 }
+
+namespace {
+/// Shortest cell edge of the disc (m): where the mesh is finest, at the slot ends.
+double shortest_disc_edge(const Mesh& mesh) {
+  const long disc = index_of(mesh.body_names, "disc");
+  double shortest = HUGE_VAL;
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+    if (static_cast<long>(mesh.cell_body[c]) != disc) continue;
+    const std::size_t n = mesh.cell_size(c);
+    for (std::size_t k = 0; k < n; ++k) {
+      const Point& p = mesh.nodes[mesh.cell_begin(c)[k]];
+      const Point& q = mesh.nodes[mesh.cell_begin(c)[(k + 1) % n]];
+      shortest = std::min(shortest, std::hypot(q.x - p.x, q.y - p.y));
+    }
+  }
+  return shortest;
+}
+}  // namespace
+
+// mesh.slot_end_size: the tips are meshed at the given multiple of the slot width. At the default
+// (one width) the 0.4 mm end face is one or two edges; at a quarter width it takes about four, so
+// the shortest edge must fall by at least half, and no edge may be shorter than half the
+// requested size (gmsh meets a size field within a factor of about 1.5).
+BOOST_AUTO_TEST_CASE(slot_end_size_refines_the_slot_ends) {
+  const ImpactDisc impact;
+  MeshControl control;
+  control.target_blocks = kBlocks;
+  const double at_default = shortest_disc_edge(generate_dda_mesh(impact, control));
+  control.slot_end_size_per_width = 0.25;
+  const double at_quarter = shortest_disc_edge(generate_dda_mesh(impact, control));
+  BOOST_TEST_MESSAGE("shortest disc edge: " << at_default * 1e3 << " mm at 1 slot width, " << at_quarter * 1e3
+                                            << " mm at 0.25 (slot width " << impact.joint_width * 1e3 << " mm)");
+  BOOST_TEST(at_quarter <= 0.5 * at_default);
+  BOOST_TEST(at_quarter >= 0.5 * 0.25 * impact.joint_width);
+}

@@ -74,6 +74,10 @@ enum class MeshAlgorithm { FrontalDelaunay, Delaunay };
 struct MeshControl {
   int target_blocks = 2000;
   MeshAlgorithm algorithm = MeshAlgorithm::FrontalDelaunay;
+  // Element size at the ends of slots and slits, in slot widths; the size grows from there to the
+  // far-field size. The tips, where cracks start, keep this size whatever the block count, so a
+  // mesh study that refines the tips must scale it too.
+  double slot_end_size_per_width = 1.0;
   double block_tolerance = 0.02;  // relative; the study's counts must be hit within ±5%
   int max_iterations = 12;
 };
