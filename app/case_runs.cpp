@@ -163,7 +163,7 @@ pid_t start_case(const CaseRun& c, const CaseRunSettings& settings, const std::s
   // It stops (resumably) if this process ends first, so a killed sweep leaves no run behind.
   std::vector<std::string> argv = run_arguments(c, settings);
   argv.insert(argv.end(), {"--stop-with-parent", std::to_string(::getpid())});
-  const pid_t pid = spawn_process(argv, log, environment_outside_mpi());
+  const pid_t pid = spawn_process(argv, log, environment_outside_mpi(), kThisExecutable);
   fmt::print("{} {} ({}){}\n", c.start == Start::FromCheckpoint ? "resumed " : "started ", c.scene.name,
              c.scene_file.string(), where);
   std::fflush(stdout);

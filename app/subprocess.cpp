@@ -39,7 +39,7 @@ constexpr std::string_view kMpiLauncherPrefixes[] = {"OMPI_", "PMIX_", "PMI_"};
 }  // namespace
 
 pid_t spawn_process(const std::vector<std::string>& argv, const std::filesystem::path& log,
-                    const std::optional<std::vector<std::string>>& environment) {
+                    const std::optional<std::vector<std::string>>& environment, const std::filesystem::path& program) {
   std::vector<char*> arguments = c_strings(argv);
   std::vector<char*> variables = environment ? c_strings(*environment) : std::vector<char*>();
 
@@ -50,8 +50,8 @@ pid_t spawn_process(const std::vector<std::string>& argv, const std::filesystem:
     posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   }
   pid_t pid = 0;
-  const int error =
-      posix_spawn(&pid, arguments[0], &actions, nullptr, arguments.data(), environment ? variables.data() : environ);
+  const int error = posix_spawn(&pid, program.empty() ? arguments[0] : program.c_str(), &actions, nullptr,
+                                arguments.data(), environment ? variables.data() : environ);
   posix_spawn_file_actions_destroy(&actions);
   if (error != 0) throw std::runtime_error("cannot start " + argv[0] + ": " + std::strerror(error));
   return pid;
