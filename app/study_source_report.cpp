@@ -61,8 +61,9 @@ TableRow table_row(const StudyCase& c) {
     return {fmt::format("| {} | {} | {} |{}\n", c.run.scene.name, c.series, state, std::string(14, '|'))};
   }
   const bool pseudo_time = s.contains("scene") && s["scene"].value("mode", "") == "static";
-  const auto time_cell = [pseudo_time](const std::optional<double>& t) {
-    return pseudo_time ? cell(t, "{:.4g} s") + (t ? kPseudoTimeMark : "") : cell(t, "{:.1f}", kMicrosecondsPerSecond);
+  // A time in µs (`format`), or a static run's load parameter in s.
+  const auto time_cell = [pseudo_time](const std::optional<double>& t, const char* format) {
+    return pseudo_time ? cell(t, "{:.4g} s") + (t ? kPseudoTimeMark : "") : cell(t, format, kMicrosecondsPerSecond);
   };
   const json metrics = s.value("crack_metrics", json::object());
   std::optional<double> length;
@@ -80,13 +81,12 @@ TableRow table_row(const StudyCase& c) {
                      c.run.scene.name, c.series, cell(number_at(s, {"scene", "blocks"}), "{:.0f}"),
                      cell(number_at(s, {"steps"}), "{:.0f}"), cell(cuts, "{:.0f}"),
                      cell(number_at(s, {"wall_time", "total"}), "{:.1f}"),
-                     pseudo_time ? time_cell(number_at(s, {"simulated_time"}))
-                                 : cell(number_at(s, {"simulated_time"}), "{:.0f}", kMicrosecondsPerSecond),
+                     time_cell(number_at(s, {"simulated_time"}), "{:.0f}"),
                      cell(number_at(s, {"cracks", "tensile"}), "{:.0f}"),
                      cell(number_at(s, {"cracks", "shear"}), "{:.0f}"), cell(length, "{:.1f}", kMillimetresPerMetre),
                      cell(number_at(metrics, {"fragments"}), "{:.0f}"), cell(largest, "{:.1f}", kPercent),
-                     time_cell(number_at(metrics, {"first_crack_time"})),
-                     time_cell(number_at(metrics, {"first_through_crack_time"})),
+                     time_cell(number_at(metrics, {"first_crack_time"}), "{:.1f}"),
+                     time_cell(number_at(metrics, {"first_through_crack_time"}), "{:.1f}"),
                      cell(peak_force(s), "{:.2f}", kKilonewtonsPerNewton),
                      cell(number_at(s, {"energy", "largest_balance_error"}), "{:.2g}", kPercent),
                      cell(number_at(s, {"missed_contacts", "count"}), "{:.0f}"), reason);
