@@ -159,6 +159,17 @@ def measure_table(runs, parameter, value, form="{:.3g}"):
     return md
 
 
+def order_verdict(order):
+    """What an observed order p of shrinking changes says (PLAUSIBLE_ORDERS)."""
+    low, high = PLAUSIBLE_ORDERS
+    if order > high:
+        return (f"not shown: the last change is smaller, but p > {high:g} is beyond the "
+                "method's order (not yet in the asymptotic range)")
+    if order < low:
+        return f"not shown: p < {low:g}, the changes barely shrink"
+    return "converging"
+
+
 def observed_orders(runs, step, what):
     """Per measure, the relative change between successive runs (ordered coarse to fine) and,
     from the last three, the observed order p in the step h (`step` of a run: the block size
@@ -182,14 +193,7 @@ def observed_orders(runs, step, what):
                 verdict = f"settled: the last change within {UNCHANGED * PERCENT:g}%"
             elif d2 < d1:
                 order = math.log(d1 / d2) / math.log(ratio)
-                low, high = PLAUSIBLE_ORDERS
-                if order > high:
-                    verdict = (f"not shown: the last change is smaller, but p > {high:g} is beyond the "
-                               "method's order (not yet in the asymptotic range)")
-                elif order < low:
-                    verdict = f"not shown: p < {low:g}, the changes barely shrink"
-                else:
-                    verdict = "converging"
+                verdict = order_verdict(order)
             else:
                 verdict = "not converging (the last change is not smaller)"
         md += (f"| {label} | " + ", ".join(f"{c * PERCENT:.1f}%" for c in changes)

@@ -124,7 +124,7 @@ void Engine::trouble(const std::string& what) const {
 
 void Engine::detect() {
   std::vector<Contact>& found = spare_contacts_;  // the list of the step before last: storage reused
-  const std::vector<Contact>& previous = set_.contacts;
+  const std::vector<Contact>& previous = set_.contacts;  // the previous step's list, until the swap below
   detect_contacts(blocks_, options_.detection, detection_, previous, found);
   stats_.pair_list_builds = detection_.pair_list_builds;
   const ContactProperties properties(scene_);
