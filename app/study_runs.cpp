@@ -25,7 +25,14 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 constexpr const char* kStudyFile = "study.json";  // --set values and the running study's pid
-constexpr int kThreadsPerRun = 1;                 // runs go side by side on the cores
+
+/// Threads of each run: the cores shared among the runs that go at once, so that the study's own
+/// processes neither oversubscribe the cores nor leave one idle (one case left to run, or
+/// --parallel 1, on two cores gets two threads).
+int threads_per_run(int cores, int parallel, std::size_t cases_to_run) {
+  const int at_once = std::max(1, std::min(parallel, static_cast<int>(cases_to_run)));
+  return std::max(1, cores / at_once);
+}
 
 /// Is the process alive (a study running in the directory)?
 bool alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
@@ -148,22 +155,23 @@ void run_study(const StudyKind& kind, const StudyArguments& args) {
   const std::vector<StudyCase> all = kind.load(overrides);
   std::vector<StudyCase> cases = choose_cases(all, args.cases, kind.command);
 
-  const int parallel = args.parallel > 0 ? args.parallel : std::max(1, ranks.cores_for_runs() / kThreadsPerRun);
-  if (ranks.is_root()) {
-    fmt::print("{}: {} cases, {} at a time{}, {} thread each, into {}{}\n", kind.command, cases.size(), parallel,
-               ranks.size() > 1 ? fmt::format(" on each of {} ranks", ranks.size()) : std::string(), kThreadsPerRun,
-               out.string(),
-               overrides.empty() ? std::string() : fmt::format(" (--set {})", fmt::join(overrides, " --set ")));
-    fs::create_directories(out);
-    write_study_file(out, overrides, ::getpid());
-  }
   std::vector<CaseRun> runs;
   for (StudyCase& c : cases) {
     if (args.resume) decide_start(c.run);
     runs.push_back(c.run);
   }
+  const int parallel = args.parallel > 0 ? args.parallel : ranks.cores_for_runs();
+  const int threads = threads_per_run(ranks.cores_for_runs(), parallel, dispatch_order(runs).size());
+  if (ranks.is_root()) {
+    fmt::print("{}: {} cases, {} at a time{}, {} thread(s) each, into {}{}\n", kind.command, cases.size(), parallel,
+               ranks.size() > 1 ? fmt::format(" on each of {} ranks", ranks.size()) : std::string(), threads,
+               out.string(),
+               overrides.empty() ? std::string() : fmt::format(" (--set {})", fmt::join(overrides, " --set ")));
+    fs::create_directories(out);
+    write_study_file(out, overrides, ::getpid());
+  }
   // The tables after every case: an interrupted study leaves those of the cases done so far.
-  run_cases(runs, {kThreadsPerRun, parallel, args.checkpoint_every, overrides,
+  run_cases(runs, {threads, parallel, args.checkpoint_every, overrides,
                    [&] { write_tables(kind, out, whole_study(all, cases), overrides, {}); }, &ranks});
   if (!ranks.is_root()) return;
   for (std::size_t k = 0; k < cases.size(); ++k) cases[k].run = runs[k];
