@@ -58,7 +58,7 @@ double normal_gap(double x1, double y1, double x2, double y2, double x3, double 
   return ((x3 - x2) * (y2 - y1) - (y3 - y2) * (x2 - x1)) / l;
 }
 
-void linearise_contact(Contact& c, const BlockSystem& s) {
+void linearise_contact(Contact& c, ContactLinearisation& lin, const BlockSystem& s) {
   const double x1 = s.vx[c.vertex], y1 = s.vy[c.vertex];
   const double x2 = s.vx[c.edge0], y2 = s.vy[c.edge0];
   const double x3 = s.vx[c.edge1], y3 = s.vy[c.edge1];
@@ -76,13 +76,13 @@ void linearise_contact(Contact& c, const BlockSystem& s) {
   const Mat26 ti = displacement_matrix(gi.cx, gi.cy, x1, y1);
   const Mat26 t2 = displacement_matrix(gj.cx, gj.cy, x2, y2);
   const Mat26 t3 = displacement_matrix(gj.cx, gj.cy, x3, y3);
-  c.e = ((y3 - y2) * ti.row(0) + (x2 - x3) * ti.row(1)).transpose() / l;
-  c.g = ((y1 - y3) * t2.row(0) + (x3 - x1) * t2.row(1) + (y2 - y1) * t3.row(0) + (x1 - x2) * t3.row(1)).transpose() / l;
+  lin.e = ((y3 - y2) * ti.row(0) + (x2 - x3) * ti.row(1)).transpose() / l;
+  lin.g = ((y1 - y3) * t2.row(0) + (x3 - x1) * t2.row(1) + (y2 - y1) * t3.row(0) + (x1 - x2) * t3.row(1)).transpose() / l;
   // d = N / l: the edge length also varies, ∂l = u·(∂P3 − ∂P2), giving −(d0/l)·∂l.
-  c.g -= (c.d0 / l) * (ux * (t3.row(0) - t2.row(0)) + uy * (t3.row(1) - t2.row(1))).transpose();
-  c.es = (ux * ti.row(0) + uy * ti.row(1)).transpose();
+  lin.g -= (c.d0 / l) * (ux * (t3.row(0) - t2.row(0)) + uy * (t3.row(1) - t2.row(1))).transpose();
+  lin.es = (ux * ti.row(0) + uy * ti.row(1)).transpose();
   const double w2 = 1.0 - c.ref_t, w3 = c.ref_t;
-  c.gs = -(ux * (w2 * t2.row(0) + w3 * t3.row(0)) + uy * (w2 * t2.row(1) + w3 * t3.row(1))).transpose();
+  lin.gs = -(ux * (w2 * t2.row(0) + w3 * t3.row(0)) + uy * (w2 * t2.row(1) + w3 * t3.row(1))).transpose();
   c.trial = c.state;
   c.fn_iter = c.normal_force;
   c.d_iter = c.d0;
@@ -146,10 +146,11 @@ bool cohesion_holds(const Contact& c, double fn, double s) {
 
 }  // namespace
 
-bool judge_contact(Contact& c, const Vec6& dv, const Vec6& de, bool bonded, double tol) {
+bool judge_contact(Contact& c, const ContactLinearisation& lin, const Vec6& dv, const Vec6& de, bool bonded,
+                   double tol) {
   c.friction_force = c.trial == ContactState::Sliding ? contact_coefficients(c).fs_rhs : 0.0;
-  const double d = c.d0 + c.e.dot(dv) + c.g.dot(de);
-  const double s = c.s0 + c.es.dot(dv) + c.gs.dot(de);
+  const double d = c.d0 + lin.e.dot(dv) + lin.g.dot(de);
+  const double s = c.s0 + lin.es.dot(dv) + lin.gs.dot(de);
   ContactState next = ContactState::Locked;
   double fn = -c.kn * d;
   if (!bonded) {

@@ -131,6 +131,7 @@ void Engine::detect() {
   std::vector<std::uint8_t> carried(previous.size(), 0);  // per previous contact: carried on or vanished
   const auto nc = static_cast<std::int64_t>(found.size());
   saved_slide_sign_.resize(found.size());
+  linear_.resize(found.size());
   const bool first = step_ == 0;
   long missed = 0, cohesive = 0, overlapping = 0;
   double deepest = 0.0, deepest_overlap = 0.0;
@@ -160,7 +161,7 @@ void Engine::detect() {
       ++overlapping;
       deepest_overlap = std::max(deepest_overlap, -c.d0);
     }
-    linearise_contact(c, blocks_);
+    linearise_contact(c, linear_[k], blocks_);
     saved_slide_sign_[k] = c.slide_sign;
   }
   ledger_.total += chunked_sum<StepEnergy>(static_cast<std::int64_t>(carried.size()), [&](std::int64_t k) {

@@ -103,9 +103,11 @@ void Engine::assemble(bool whole) {
     for (Index m = first; m < last; ++m) {
       const ContactCoefficients& q = coefficients_[set_.block_contacts[m]];
       if (inactive(q) && q.fs_rhs == 0.0) continue;
-      const Contact& c = cs[set_.block_contacts[m]];
-      const Vec6& a = c.vblock == i ? c.e : c.g;
-      const Vec6& b = c.vblock == i ? c.es : c.gs;
+      const Index contact = set_.block_contacts[m];
+      const ContactLinearisation& lin = linear_[contact];
+      const bool vertex_side = cs[contact].vblock == i;
+      const Vec6& a = vertex_side ? lin.e : lin.g;
+      const Vec6& b = vertex_side ? lin.es : lin.gs;
       if (q.kn_eff != 0.0) add_outer_product(k, q.kn_eff, a, a);
       if (q.ks_eff != 0.0) add_outer_product(k, q.ks_eff, b, b);
       f += q.fn_rhs * a + q.fs_rhs * b;
@@ -127,12 +129,12 @@ void Engine::assemble(bool whole) {
       const ContactCoefficients& q = coefficients_[m];
       if (inactive(q)) continue;
       nonzero = true;
-      const Contact& c = cs[m];
-      const bool v_is_a = c.vblock == pr.a;
-      const Vec6& na = v_is_a ? c.e : c.g;
-      const Vec6& nb = v_is_a ? c.g : c.e;
-      const Vec6& sa = v_is_a ? c.es : c.gs;
-      const Vec6& sb = v_is_a ? c.gs : c.es;
+      const ContactLinearisation& lin = linear_[m];
+      const bool v_is_a = cs[m].vblock == pr.a;
+      const Vec6& na = v_is_a ? lin.e : lin.g;
+      const Vec6& nb = v_is_a ? lin.g : lin.e;
+      const Vec6& sa = v_is_a ? lin.es : lin.gs;
+      const Vec6& sb = v_is_a ? lin.gs : lin.es;
       if (q.kn_eff != 0.0) add_outer_product(k, q.kn_eff, na, nb);
       if (q.ks_eff != 0.0) add_outer_product(k, q.ks_eff, sa, sb);
     }
@@ -151,7 +153,7 @@ bool Engine::judge(int& changed_first) {
 #pragma omp parallel for schedule(static) reduction(+ : changed) reduction(min : first)
   for (std::int64_t k = 0; k < nc; ++k) {
     Contact& c = set_.contacts[k];
-    if (judge_contact(c, d_[c.vblock], d_[c.eblock], c.bonded(blocks_.joints), tol)) {
+    if (judge_contact(c, linear_[k], d_[c.vblock], d_[c.eblock], c.bonded(blocks_.joints), tol)) {
       ++changed;
       first = std::min(first, static_cast<int>(k));
     }

@@ -98,7 +98,8 @@ BOOST_AUTO_TEST_CASE(contact_gradients_match_finite_differences) {
   c.edge1 = 6;
   c.state = ContactState::Locked;
   c.ref_t = 0.3;
-  linearise_contact(c, bs);
+  ContactLinearisation lin;
+  linearise_contact(c, lin, bs);
   BOOST_TEST(close(c.d0, 0.05, kExact));
   const double step = 1e-6;
   for (int r = 0; r < 12; ++r) {
@@ -111,12 +112,12 @@ BOOST_AUTO_TEST_CASE(contact_gradients_match_finite_differences) {
     };
     const auto p1 = moved(0, 0, di), p2 = moved(5, 1, dj), p3 = moved(6, 1, dj);
     const double d = normal_gap(p1.x(), p1.y(), p2.x(), p2.y(), p3.x(), p3.y());
-    const double lin = c.d0 + c.e.dot(di) + c.g.dot(dj);
-    BOOST_TEST(std::abs(d - lin) <= 1e-10, "dof " << r << ": exact " << d << " linear " << lin);
+    const double linear = c.d0 + lin.e.dot(di) + lin.g.dot(dj);
+    BOOST_TEST(std::abs(d - linear) <= 1e-10, "dof " << r << ": exact " << d << " linear " << linear);
     // Shear along the (undeformed) edge direction from the reference point.
     const Eigen::Vector2d u = (Eigen::Vector2d(bs.vx[6], bs.vy[6]) - Eigen::Vector2d(bs.vx[5], bs.vy[5])).normalized();
     const double sh = (p1 - (p2 + c.ref_t * (p3 - p2))).dot(u);
-    BOOST_TEST(std::abs(sh - (c.s0 + c.es.dot(di) + c.gs.dot(dj))) <= 1e-10, "shear dof " << r);
+    BOOST_TEST(std::abs(sh - (c.s0 + lin.es.dot(di) + lin.gs.dot(dj))) <= 1e-10, "shear dof " << r);
   }
 }
 
@@ -403,22 +404,19 @@ BOOST_AUTO_TEST_CASE(sliding_is_a_fixed_point_when_the_carried_shear_exceeds_a_f
   c.state = c.trial = ContactState::Locked;
   c.d0 = -7.08e-7;
   c.s0 = -5.11e-7;
-  c.e = Vec6::Zero();
-  c.es = Vec6::Zero();
-  c.g = Vec6::Zero();
-  c.gs = Vec6::Zero();
-  c.e[kU] = 1.0;   // d = d0 + D_v[u]
-  c.es[kV] = 1.0;  // s = s0 + D_v[v]
+  ContactLinearisation lin;  // zero
+  lin.e[kU] = 1.0;   // d = d0 + D_v[u]
+  lin.es[kV] = 1.0;  // s = s0 + D_v[v]
   Vec6 dv = Vec6::Zero();
   dv[kU] = -5.26e-7 - c.d0;  // fn = 184 N/m, limit tanφ·fn = 67 N/m
   dv[kV] = 1.2e-8;           // unloading: s = -4.99e-7 m, spring 69.9 N/m > limit
   const Vec6 de = Vec6::Zero();
   const double tol = 6e-10;
-  BOOST_TEST(judge_contact(c, dv, de, false, tol));
+  BOOST_TEST(judge_contact(c, lin, dv, de, false, tol));
   BOOST_TEST(static_cast<int>(c.trial) == static_cast<int>(ContactState::Sliding));
   BOOST_TEST(c.slide_sign == -1.0);
   // The sliding solution moves on the same way: no further change.
-  BOOST_TEST(!judge_contact(c, dv, de, false, tol));
+  BOOST_TEST(!judge_contact(c, lin, dv, de, false, tol));
   BOOST_TEST(static_cast<int>(c.trial) == static_cast<int>(ContactState::Sliding));
   // Commit: the elastic part stays at the limit, the reference point takes the plastic slip.
   c.edge_length = 1e-3;
@@ -430,6 +428,6 @@ BOOST_AUTO_TEST_CASE(sliding_is_a_fixed_point_when_the_carried_shear_exceeds_a_f
   // A real reversal (shear back inside the limit) locks it again.
   dv[kV] = 4e-7;
   c.s0 = elastic;
-  BOOST_TEST(judge_contact(c, dv, de, false, tol));
+  BOOST_TEST(judge_contact(c, lin, dv, de, false, tol));
   BOOST_TEST(static_cast<int>(c.trial) == static_cast<int>(ContactState::Locked));
 }

@@ -48,12 +48,10 @@ struct Contact {
   double kn = 0.0, ks = 0.0;  // penalty springs, N/m
   double tan_phi = 0.0;
   double cohesion = 0.0, tensile_strength = 0.0;  // Pa, of the joint set (used while cohesive)
-  // Per step (geometry at step start): gap, shear and their linearisations.
+  // Per step (geometry at step start): gap and shear (their gradients: ContactLinearisation).
   double d0 = 0.0;  // normal gap, m, positive = apart
   double s0 = 0.0;  // shear displacement from the reference point along the edge, m
   double edge_length = 0.0;
-  Vec6 e = Vec6::Zero(), g = Vec6::Zero();    // d ≈ d0 + e·D_v + g·D_e
-  Vec6 es = Vec6::Zero(), gs = Vec6::Zero();  // s ≈ s0 + es·D_v + gs·D_e
   // Per open-close iteration.
   ContactState trial = ContactState::Open;  // state assumed by the current assembly
   double fn_iter = 0.0;                     // normal force of the latest solve, N/m
@@ -68,6 +66,15 @@ struct Contact {
   /// Blocks of the pair in increasing order.
   Index pair_low() const { return vblock < eblock ? vblock : eblock; }
   Index pair_high() const { return vblock < eblock ? eblock : vblock; }
+};
+
+/// The gradients of a contact's gap and shear with respect to the unknowns of its vertex block
+/// (D_v) and edge block (D_e), from the geometry at the step's start. Kept beside the contact
+/// list, not in its records: only the assembly and the judgement read them, and the other
+/// passes over the records then stream less than half the bytes.
+struct ContactLinearisation {
+  Vec6 e = Vec6::Zero(), g = Vec6::Zero();    // d ≈ d0 + e·D_v + g·D_e
+  Vec6 es = Vec6::Zero(), gs = Vec6::Zero();  // s ≈ s0 + es·D_v + gs·D_e
 };
 
 /// A block pair with contacts: contacts[first, last) of the sorted list.

@@ -33,7 +33,7 @@ double cohesive_length(const Contact& c, const BlockSystem& blocks, double angle
 /// Normal gap, shear displacement from the locked reference point, and their gradients with
 /// respect to the unknowns of both blocks, from the current geometry. Open contacts
 /// move their reference point to the current projection (s0 = 0). Formulas: docs/design.md §4.2.
-void linearise_contact(Contact& c, const BlockSystem& blocks);
+void linearise_contact(Contact& c, ContactLinearisation& linear, const BlockSystem& blocks);
 
 /// Exact (nonlinear) normal gap of a vertex against an edge, positive when the vertex is
 /// outside the CCW block: d = [(x3-x2)(y2-y1) - (y3-y2)(x2-x1)] / l.
@@ -74,7 +74,7 @@ inline JointStrength joint_strength(double tensile_strength, double cohesion, do
 /// flipping forever: an open contact closes only once it overlaps by more than `tolerance`, a locked one slides only if
 /// its shear exceeds the friction limit by ks·tolerance, a sliding one locks only when its
 /// shear in the sliding direction falls below the limit by ks·tolerance. (docs/design.md §4.3–§4.5)
-bool judge_contact(Contact& c, const Vec6& d_vertex_block, const Vec6& d_edge_block, bool bonded,
+bool judge_contact(Contact& c, const ContactLinearisation& linear, const Vec6& d_vertex_block, const Vec6& d_edge_block, bool bonded,
                    double tolerance = 0.0);
 
 /// After the step is accepted: forces, slip and reference point carried to the next step (a

@@ -219,6 +219,7 @@ class Engine {
   std::vector<Contact> spare_contacts_;  // the previous step's list, refilled by the next detection
   DetectionWorkspace detection_;
   BlockMatrix matrix_;
+  std::vector<ContactLinearisation> linear_;  // per contact of set_, from this step's detection
   std::vector<ContactCoefficients> coefficients_;  // per contact, of the latest assembly
   std::vector<std::uint8_t> coefficient_changed_;  // per contact, since the assembly before
   BlockVector base_rhs_, rhs_, d_;
