@@ -45,6 +45,9 @@ constexpr double kThetaStiffnessMultiple = 10.0;  // the θ series once more, wi
 /// The time steps of the time-step family besides the scene's own dt_max (s): with it, three
 /// steps that halve, enough for an observed order.
 constexpr double kTimeSteps[] = {5e-8, 2.5e-8};
+/// Element sizes at the slot's ends (mesh.slot_end_size, slot widths) of the slot-tips family
+/// besides the scene's own (1): the tips refined twice by halving at the same block count.
+constexpr double kSlotEndSizes[] = {0.5, 0.25};
 /// Platen speeds of the loading-rate family (m/s), and the static run at the scene's speed.
 constexpr double kPlatenSpeeds[] = {1.0, 0.5, 0.25, 0.125};
 /// Static mode keeps the inertia term 2M/Δt² (docs/design.md §3): at the scene's dt_max it is
@@ -53,7 +56,7 @@ constexpr double kPlatenSpeeds[] = {1.0, 0.5, 0.25, 0.125};
 /// so that the term is ~10⁻⁵ of the stiffness and each step is near equilibrium.
 constexpr double kStaticTimeStretch = 1e4;
 constexpr const char* kPlaten = "top_platen";  // the prescribed body of the Brazilian scenes
-constexpr const char* kFamilies[] = {"mesh", "penalty", "penalty-theta", "timestep", "rate"};
+constexpr const char* kFamilies[] = {"mesh", "penalty", "penalty-theta", "timestep", "slot-tips", "rate"};
 
 struct SensitivityArguments : StudyArguments {
   std::vector<std::string> families;  // empty: all
@@ -135,9 +138,8 @@ class VariantBuilder {
   }
 
   /// Every contact and joint at kn = `multiple` × the disc's Young's modulus (analysis.penalty,
-  /// which the scene's joint sets take), with the longest dt_max (1, 2 or 5 × 10^k, at most the
-  /// scene's) that gives the stiffest spring on the lightest block the steps per period the run
-  /// asks for (run's warning, docs/design.md §7). The virtual joints alone would not do: a joint
+  /// which the scene's joint sets take), with a dt_max that resolves the contact period
+  /// (resolving_contact_period). The virtual joints alone would not do: a joint
   /// that breaks becomes a contact of the real joints' kn, and a disc stressed through joints of
   /// kn = E then presses its broken faces ~0.8 mm into each other through springs 30× softer
   /// (measured: the energy balance off by 2400% at 400 µs).
@@ -154,10 +156,25 @@ class VariantBuilder {
     const double kn = multiple * base.materials[disc->material].young;  // N/m per unit thickness (×1 m)
     v.name += fmt::format("-kn{:g}E", multiple);
     v.tables["analysis"]["penalty"] = number(kn);
-    scene::Scene stiff = load(write(v));
-    const meshes::Mesh mesh = dda_mesh(stiff);
-    const dda::Engine engine(stiff, mesh);
-    const dda::ContactPeriod shortest = dda::shortest_contact_period(engine, stiff.analysis.dt_max);
+    return resolving_contact_period(std::move(v));
+  }
+
+  /// The slot's ends meshed at `size` slot widths (mesh.slot_end_size), with a dt_max that
+  /// resolves the contact period of the smaller blocks there (as for the stiffer joints).
+  Variant with_slot_end_size(Variant v, double size) const {
+    v.name += fmt::format("-tip{:g}", size);
+    v.tables["mesh"]["slot_end_size"] = number(size);
+    return resolving_contact_period(std::move(v));
+  }
+
+  /// The variant with the longest dt_max (1, 2 or 5 × 10^k, at most the scene's) that gives the
+  /// stiffest spring on the lightest block the steps per period the run asks for (run's
+  /// warning, docs/design.md §7); unchanged if the scene's dt_max already does.
+  Variant resolving_contact_period(Variant v) const {
+    const scene::Scene s = load(write(v));
+    const meshes::Mesh mesh = dda_mesh(s);
+    const dda::Engine engine(s, mesh);
+    const dda::ContactPeriod shortest = dda::shortest_contact_period(engine, s.analysis.dt_max);
     if (shortest.unresolved_blocks > 0)
       v.tables["analysis"]["dt_max"] = number(round_down_to_1_2_5(shortest.period / dda::kMinStepsPerContactPeriod));
     return v;
@@ -252,6 +269,11 @@ std::vector<Variant> variants(const SensitivityArguments& args, const fs::path& 
     add(build.at_scale(kImpactCase), "timestep");
     for (const double dt : kTimeSteps) add(build.with_time_step(build.at_scale(kImpactCase), dt), "timestep");
   }
+  if (wanted("slot-tips")) {
+    add(build.at_scale(kImpactCase), "slot-tips");
+    for (const double size : kSlotEndSizes)
+      add(build.with_slot_end_size(build.at_scale(kImpactCase), size), "slot-tips");
+  }
   if (wanted("rate")) {
     for (const double v : kPlatenSpeeds) add(build.with_platen_speed(build.at_scale(kFlattenedDiscs[0]), v), "rate");
     add(build.in_static_mode(build.at_scale(kFlattenedDiscs[0])), "rate");
@@ -300,7 +322,8 @@ void register_study_sensitivity(CLI::App& study) {
   auto args = std::make_shared<SensitivityArguments>();
   CLI::App* command = study.add_subcommand(
       "sensitivity",
-      "how crack results move with the mesh, the joints' stiffness, the time step and the loading rate "
+      "how crack results move with the mesh, the joints' stiffness, the time step, the slot tips' mesh and the "
+      "loading rate "
       "(case 4 and the flattened disc), as one resumable command");
   command->add_option("--family", args->families, "only these families (comma-separated; default: all)")
       ->delimiter(',')

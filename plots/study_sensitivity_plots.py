@@ -12,6 +12,7 @@ summary.json, scene.resolved.toml, history.csv, gauges.csv and loading.csv, and 
     figures/mesh.png            case 4's crack measures against its block count
     figures/penalty.png         case 4's crack measures and gauge σ1 peaks against kn/E
     figures/timestep.png        case 4's crack measures against dt_max
+    figures/slot_tips.png       case 4's crack measures against the element size at the slot's ends
     figures/rate.png            the flattened disc's force-displacement curves per platen speed,
                                 and the peak force against speed
     figures/penalty_theta.png   the θ series' crack counts at kn = 10·E
@@ -39,6 +40,9 @@ PERCENT = 100.0
 LOADED_BODY = "top_platen"  # the prescribed platen of the Brazilian scenes
 CENTRE_GAUGE = "centre"  # the Brazilian scenes' gauge at the disc's centre
 GAUGE_CASE = "case04"  # the impact case the families vary
+# Slot widths: mesh.slot_end_size of a scene that leaves it out (meshes::MeshControl); a resolved
+# scene lists only the values its files set.
+DEFAULT_SLOT_END_SIZE = 1.0
 # A measure whose relative change between meshes is at most this is taken as unchanged.
 UNCHANGED = 0.01
 # The observed orders that can mean convergence. Above: the blocks carry constant strain, so
@@ -117,6 +121,7 @@ def read_run(h, case, families, run_dir):
         "summary": summary,
         "blocks": summary["scene"]["blocks"],
         "dt_max": summary["scene"]["dt_max"],
+        "slot_end_size": scene.get("mesh", {}).get("slot_end_size", DEFAULT_SLOT_END_SIZE),
         "mode": summary["scene"]["mode"],
         "young": material.get("young"),
         "kn": joints.get("normal_stiffness", scene.get("analysis", {}).get("penalty")),
@@ -362,11 +367,15 @@ def brazilian_table(h, runs, parameter, value, form="{:.3g}"):
     return md
 
 
+def time_steps_line(runs, why):
+    """A line listing each run's dt_max, and why they differ."""
+    return f"dt_max of each run ({why}): " + ", ".join(f"{r['case']} {r['dt_max']:g} s" for r in runs) + "\n\n"
+
+
 def penalty_section(h, runs, figures, save):
     runs = sorted(runs, key=lambda r: r["kn"] / r["young"])
     md = "## Joint stiffness (penalty)\n\n" + measure_table(runs, "kn/E", lambda r: r["kn"] / r["young"]) + "\n"
-    md += "dt_max of each run (the stiffer joints need shorter steps to resolve the contact period): " + ", ".join(
-        f"{r['case']} {r['dt_max']:g} s" for r in runs) + "\n\n"
+    md += time_steps_line(runs, "the stiffer joints need shorter steps to resolve the contact period")
     peaks = [gauge_peaks(h, r) for r in runs]
     names = list(dict.fromkeys(n for p in peaks for n in p))
     if names:
@@ -387,6 +396,16 @@ def timestep_section(runs, figures, save):
     md += observed_orders(runs, lambda r: r["dt_max"], "time steps") + "\n"
     draw_measures(runs, lambda r: r["dt_max"], "dt_max (s)", True, "case 4 against the time step",
                   os.path.join(figures, "timestep.png"), save)
+    return md
+
+
+def slot_tips_section(runs, figures, save):
+    runs = sorted(runs, key=lambda r: -r["slot_end_size"])
+    md = "## Slot tips\n\n" + measure_table(runs, "slot-end size (slot widths)", lambda r: r["slot_end_size"]) + "\n"
+    md += time_steps_line(runs, "smaller blocks at the tips may need shorter steps to resolve the contact period")
+    md += observed_orders(runs, lambda r: r["slot_end_size"], "tip sizes") + "\n"
+    draw_measures(runs, lambda r: r["slot_end_size"], "element size at the slot's ends (slot widths)", True,
+                  "case 4 against the mesh at its slot's tips", os.path.join(figures, "slot_tips.png"), save)
     return md
 
 
@@ -473,6 +492,8 @@ def draw_study(args, h, save):
         md += penalty_section(h, runs["penalty"], figures, save)
     if "timestep" in runs:
         md += timestep_section(runs["timestep"], figures, save)
+    if "slot-tips" in runs:
+        md += slot_tips_section(runs["slot-tips"], figures, save)
     if "rate" in runs:
         md += rate_section(h, runs["rate"], figures, save)
     if "penalty-theta" in runs:
