@@ -77,7 +77,8 @@ void linearise_contact(Contact& c, ContactLinearisation& lin, const BlockSystem&
   const Mat26 t2 = displacement_matrix(gj.cx, gj.cy, x2, y2);
   const Mat26 t3 = displacement_matrix(gj.cx, gj.cy, x3, y3);
   lin.e = ((y3 - y2) * ti.row(0) + (x2 - x3) * ti.row(1)).transpose() / l;
-  lin.g = ((y1 - y3) * t2.row(0) + (x3 - x1) * t2.row(1) + (y2 - y1) * t3.row(0) + (x1 - x2) * t3.row(1)).transpose() / l;
+  lin.g =
+      ((y1 - y3) * t2.row(0) + (x3 - x1) * t2.row(1) + (y2 - y1) * t3.row(0) + (x1 - x2) * t3.row(1)).transpose() / l;
   // d = N / l: the edge length also varies, ∂l = u·(∂P3 − ∂P2), giving −(d0/l)·∂l.
   lin.g -= (c.d0 / l) * (ux * (t3.row(0) - t2.row(0)) + uy * (t3.row(1) - t2.row(1))).transpose();
   lin.es = (ux * ti.row(0) + uy * ti.row(1)).transpose();

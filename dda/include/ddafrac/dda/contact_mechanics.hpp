@@ -74,8 +74,8 @@ inline JointStrength joint_strength(double tensile_strength, double cohesion, do
 /// flipping forever: an open contact closes only once it overlaps by more than `tolerance`, a locked one slides only if
 /// its shear exceeds the friction limit by ks·tolerance, a sliding one locks only when its
 /// shear in the sliding direction falls below the limit by ks·tolerance. (docs/design.md §4.3–§4.5)
-bool judge_contact(Contact& c, const ContactLinearisation& linear, const Vec6& d_vertex_block, const Vec6& d_edge_block, bool bonded,
-                   double tolerance = 0.0);
+bool judge_contact(Contact& c, const ContactLinearisation& linear, const Vec6& d_vertex_block,
+                   const Vec6& d_edge_block, bool bonded, double tolerance = 0.0);
 
 /// After the step is accepted: forces, slip and reference point carried to the next step (a
 /// sliding contact's reference point moves by its plastic slip).
