@@ -26,13 +26,15 @@ using nlohmann::json;
 
 constexpr const char* kStudyFile = "study.json";  // --set values and the running study's pid
 
+/// Runs that go at once: --parallel (default the cores), but no more than there are to run.
+int runs_at_once(int parallel, std::size_t cases_to_run) {
+  return std::max(1, std::min(parallel, static_cast<int>(cases_to_run)));
+}
+
 /// Threads of each run: the cores shared among the runs that go at once, so that the study's own
 /// processes neither oversubscribe the cores nor leave one idle (one case left to run, or
 /// --parallel 1, on two cores gets two threads).
-int threads_per_run(int cores, int parallel, std::size_t cases_to_run) {
-  const int at_once = std::max(1, std::min(parallel, static_cast<int>(cases_to_run)));
-  return std::max(1, cores / at_once);
-}
+int threads_per_run(int cores, int at_once) { return std::max(1, cores / at_once); }
 
 /// Is the process alive (a study running in the directory)?
 bool alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
@@ -160,10 +162,12 @@ void run_study(const StudyKind& kind, const StudyArguments& args) {
     if (args.resume) decide_start(c.run);
     runs.push_back(c.run);
   }
-  const int parallel = args.parallel > 0 ? args.parallel : ranks.cores_for_runs();
-  const int threads = threads_per_run(ranks.cores_for_runs(), parallel, dispatch_order(runs).size());
+  const std::size_t to_run = dispatch_order(runs).size();
+  const int parallel = runs_at_once(args.parallel > 0 ? args.parallel : ranks.cores_for_runs(), to_run);
+  const int threads = threads_per_run(ranks.cores_for_runs(), parallel);
   if (ranks.is_root()) {
-    fmt::print("{}: {} cases, {} at a time{}, {} thread(s) each, into {}{}\n", kind.command, cases.size(), parallel,
+    fmt::print("{}: {} case{} ({} to run), {} at a time{}, {} thread(s) each, into {}{}\n", kind.command,
+               cases.size(), cases.size() == 1 ? "" : "s", to_run, parallel,
                ranks.size() > 1 ? fmt::format(" on each of {} ranks", ranks.size()) : std::string(), threads,
                out.string(),
                overrides.empty() ? std::string() : fmt::format(" (--set {})", fmt::join(overrides, " --set ")));
