@@ -162,9 +162,10 @@ void run_study(const StudyKind& kind, const StudyArguments& args) {
     if (args.resume) decide_start(c.run);
     runs.push_back(c.run);
   }
+  const int cores = ranks.cores_for_runs();
   const std::size_t to_run = dispatch_order(runs).size();
-  const int parallel = runs_at_once(args.parallel > 0 ? args.parallel : ranks.cores_for_runs(), to_run);
-  const int threads = threads_per_run(ranks.cores_for_runs(), parallel);
+  const int parallel = runs_at_once(args.parallel > 0 ? args.parallel : cores, to_run);
+  const int threads = threads_per_run(cores, parallel);
   if (ranks.is_root()) {
     fmt::print("{}: {} case{} ({} to run), {} at a time{}, {} thread(s) each, into {}{}\n", kind.command,
                cases.size(), cases.size() == 1 ? "" : "s", to_run, parallel,

@@ -4,8 +4,8 @@
 # Runs on cores 0 and 1 (taskset); skipped (77) on a machine with fewer.
 # Usage: study_threads.sh DDAFRAC WORK_DIR
 set -u
+source "$(dirname "${BASH_SOURCE[0]}")/study_checks.sh"
 ddafrac=$1 work=$2
-fail() { echo "FAIL: $*"; exit 1; }
 [ "$(nproc --all)" -ge 2 ] || { echo "SKIP: fewer than 2 cores"; exit 77; }
 rm -rf "$work" && mkdir -p "$work"
 # case 4 at 700 blocks (the smallest its slot allows) for 20 steps: seconds per case.
