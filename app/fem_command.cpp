@@ -2,8 +2,9 @@
 // the scene's disc. Static scenes (plain disc with load arcs, flattened disc, slit disc) give
 // the stress field, profiles along both diameters, gauges and a VTU; the impact scene gives the
 // elastodynamic gauge histories (the disc moving at v0 with the impact patch held from t = 0),
-// energies and VTU snapshots listed in run.pvd. Under mpirun each rank holds and writes only its
-// part of the mesh (VTU pieces under a .pvtu record); rank 0 writes the rest.
+// energies and VTU snapshots listed in run.pvd. Under mpirun rank 0 alone meshes, and each rank
+// holds and writes only its part of the mesh (VTU pieces under a .pvtu record); rank 0 writes
+// the rest.
 
 #include <fmt/core.h>
 #include <CLI/CLI.hpp>
@@ -22,6 +23,7 @@
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
 #include "ddafrac/fem/dynamic_problem.hpp"
+#include "ddafrac/fem/mesh_on_first_rank.hpp"
 #include "ddafrac/fem/static_problem.hpp"
 #include "ddafrac/meshes/generate.hpp"
 #include "fem_session.hpp"
@@ -193,8 +195,8 @@ void run_fem(const FemArguments& args) {
   if (auto* flat = std::get_if<meshes::FlattenedDisc>(&geometry)) flat->with_platens = false;
   nlohmann::json summary;
   try {
-    auto mesh = meshes::generate_fem_mesh(geometry, size,
-                                          args.quads ? meshes::FemCells::Quadrilaterals : meshes::FemCells::Triangles);
+    const auto cells = args.quads ? meshes::FemCells::Quadrilaterals : meshes::FemCells::Triangles;
+    auto mesh = fem::mesh_on_first_rank([&] { return meshes::generate_fem_mesh(geometry, size, cells); });
     summary = std::holds_alternative<meshes::ImpactDisc>(geometry) ? run_dynamic(args, s, std::move(mesh), out)
                                                                    : run_static(args, s, std::move(mesh), out);
   } catch (const meshes::MeshError& e) {

@@ -182,7 +182,8 @@ void build_coarse(const meshes::Mesh& mesh, dealii::Triangulation<dim>& tria) {
 }  // namespace
 
 /// Rank 0 alone builds the whole mesh, refines it and partitions it (METIS), and sends each
-/// rank the description of its own cells and their ghosts.
+/// rank the description of its own cells and their ghosts. The other ranks read only the mesh's
+/// boundary group names (their `mesh` may hold nothing else: mesh_on_first_rank).
 void Model::build_triangulation(const meshes::Mesh& mesh, const Discretisation& disc) {
   for (std::size_t g = 0; g < mesh.boundary_names.size(); ++g)
     boundary_ids_[mesh.boundary_names[g]] = static_cast<BoundaryId>(g + 1);

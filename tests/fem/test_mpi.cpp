@@ -3,7 +3,7 @@
 // (each rank holding only its METIS part of the mesh, everything distributed; static: CG + AMG;
 // dynamic: CHOLMOD serially, MUMPS distributed on 2 ranks; gauges and profile points evaluated
 // by the rank that owns their cell) give the same stresses to the solver tolerance, and the two
-// ranks' VTU pieces hold every cell once.
+// ranks' VTU pieces hold every cell once. Only rank 0 meshes, and its meshing error stops both.
 
 #define BOOST_TEST_MODULE fem_mpi
 #include <boost/test/unit_test.hpp>
@@ -83,6 +83,14 @@ std::vector<std::size_t> snapshot_cells(const std::filesystem::path& dir, std::s
   return out;
 }
 
+/// The first line of a text file, as a number or as text.
+std::string first_line(const std::filesystem::path& path) {
+  const auto text = read_text(path);
+  return text.substr(0, text.find('\n'));
+}
+
+const std::string two_ranks = std::string(MPIEXEC) + " -np 2 --oversubscribe";
+
 Values run(const std::string& launcher, const std::filesystem::path& csv) {
   std::filesystem::remove(csv);
   const std::string command = launcher + " \"" + FEM_MPI_CASE + "\" \"" + csv.string() + "\"";
@@ -98,7 +106,7 @@ BOOST_AUTO_TEST_CASE(serial_and_two_ranks_agree) {
   const auto dir = std::filesystem::current_path() / "fem_mpi.out";
   std::filesystem::create_directories(dir);
   const Values serial = run("", dir / "serial.csv");
-  const Values parallel = run(std::string(MPIEXEC) + " -np 2 --oversubscribe", dir / "np2.csv");
+  const Values parallel = run(two_ranks, dir / "np2.csv");
   BOOST_REQUIRE_EQUAL(serial.size(), parallel.size());
   BOOST_REQUIRE_GT(serial.size(), 100u);
 
@@ -126,4 +134,23 @@ BOOST_AUTO_TEST_CASE(serial_and_two_ranks_agree) {
   BOOST_TEST(cells_np2 == cells_serial, boost::test_tools::per_element());
   for (const auto& [kind, w] : worst)
     BOOST_TEST_MESSAGE(kind << ": largest |serial - np 2| / scale = " << w << " (scale " << scale[kind] << ")");
+
+  // Only rank 0 meshed: rank 1 got its part of the triangulation, never the whole mesh.
+  const auto serial_nodes = std::stoul(first_line(dir / "serial.csv.rank0.mesh"));
+  BOOST_TEST(serial_nodes > 100u);
+  BOOST_TEST(std::stoul(first_line(dir / "np2.csv.rank0.mesh")) == serial_nodes);
+  BOOST_TEST(std::stoul(first_line(dir / "np2.csv.rank1.mesh")) == 0u);
+}
+
+// A mesh that cannot be made on rank 0 is an error on every rank, not a rank left waiting in
+// a collective call for a mesh that never comes (the test's TIMEOUT would catch a hang).
+BOOST_AUTO_TEST_CASE(a_meshing_error_on_the_first_rank_stops_every_rank) {
+  const auto dir = std::filesystem::current_path() / "fem_mpi.out";
+  std::filesystem::create_directories(dir);
+  const auto out = dir / "mesh_error";
+  for (const int rank : {0, 1}) std::filesystem::remove(out.string() + ".rank" + std::to_string(rank) + ".error");
+  const std::string command = two_ranks + " \"" + FEM_MPI_CASE + "\" --mesh-error \"" + out.string() + "\"";
+  BOOST_TEST(std::system(command.c_str()) != 0);
+  for (const int rank : {0, 1})
+    BOOST_TEST(first_line(out.string() + ".rank" + std::to_string(rank) + ".error") == "the test's generator fails");
 }
