@@ -19,6 +19,7 @@
 #include <variant>
 
 #include "commands.hpp"
+#include "ddafrac/build_commit.hpp"
 #include "ddafrac/common/angles.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "ddafrac/coupling/scene_fem.hpp"
@@ -206,6 +207,7 @@ void run_fem(const FemArguments& args) {
   }
   summary["scene"] = s.name;
   summary["version"] = DDAFRAC_VERSION;
+  summary["commit"] = DDAFRAC_COMMIT;
   summary["degree"] = args.degree;
   summary["refinements"] = args.refine;
   summary["cells"] = args.quads ? "quadrilaterals" : "triangles";

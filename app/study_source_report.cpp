@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <map>
 
 namespace ddafrac::app {
 
@@ -77,19 +78,17 @@ TableRow table_row(const StudyCase& c) {
     if (const auto n = number_at(s, {"dt", kind})) cuts = cuts.value_or(0.0) + *n;
   const std::string reason = s.contains("exit") ? s["exit"].value("reason", "?") : "?";
   const std::string text = fmt::format(
-      "| {} | {} | {} | {} | {} | {} | {} | {} / {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
-                     c.run.scene.name, c.series, cell(number_at(s, {"scene", "blocks"}), "{:.0f}"),
-                     cell(number_at(s, {"steps"}), "{:.0f}"), cell(cuts, "{:.0f}"),
-                     cell(number_at(s, {"wall_time", "total"}), "{:.1f}"),
-                     time_cell(number_at(s, {"simulated_time"}), "{:.0f}"),
-                     cell(number_at(s, {"cracks", "tensile"}), "{:.0f}"),
-                     cell(number_at(s, {"cracks", "shear"}), "{:.0f}"), cell(length, "{:.1f}", kMillimetresPerMetre),
-                     cell(number_at(metrics, {"fragments"}), "{:.0f}"), cell(largest, "{:.1f}", kPercent),
-                     time_cell(number_at(metrics, {"first_crack_time"}), "{:.1f}"),
-                     time_cell(number_at(metrics, {"first_through_crack_time"}), "{:.1f}"),
-                     cell(peak_force(s), "{:.2f}", kKilonewtonsPerNewton),
-                     cell(number_at(s, {"energy", "largest_balance_error"}), "{:.2g}", kPercent),
-                     cell(number_at(s, {"missed_contacts", "count"}), "{:.0f}"), reason);
+      "| {} | {} | {} | {} | {} | {} | {} | {} / {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", c.run.scene.name,
+      c.series, cell(number_at(s, {"scene", "blocks"}), "{:.0f}"), cell(number_at(s, {"steps"}), "{:.0f}"),
+      cell(cuts, "{:.0f}"), cell(number_at(s, {"wall_time", "total"}), "{:.1f}"),
+      time_cell(number_at(s, {"simulated_time"}), "{:.0f}"), cell(number_at(s, {"cracks", "tensile"}), "{:.0f}"),
+      cell(number_at(s, {"cracks", "shear"}), "{:.0f}"), cell(length, "{:.1f}", kMillimetresPerMetre),
+      cell(number_at(metrics, {"fragments"}), "{:.0f}"), cell(largest, "{:.1f}", kPercent),
+      time_cell(number_at(metrics, {"first_crack_time"}), "{:.1f}"),
+      time_cell(number_at(metrics, {"first_through_crack_time"}), "{:.1f}"),
+      cell(peak_force(s), "{:.2f}", kKilonewtonsPerNewton),
+      cell(number_at(s, {"energy", "largest_balance_error"}), "{:.2g}", kPercent),
+      cell(number_at(s, {"missed_contacts", "count"}), "{:.0f}"), reason);
   return {text, pseudo_time};
 }
 
@@ -104,6 +103,29 @@ std::string definitions(const std::vector<StudyCase>& cases) {
                        d.value("through_fragment_fraction", 0.0));
   }
   return "- (no run has written its crack metrics yet)\n";
+}
+
+/// Which engine (the source commit of the ddafrac build) ran each case, as the runs recorded it:
+/// cases of one study run by different engines can differ by more than the physics does.
+std::string engines(const std::vector<StudyCase>& cases) {
+  const std::string not_recorded = "not recorded (a build before runs recorded it)";
+  std::map<std::string, std::vector<std::string>> cases_by_commit;
+  for (const StudyCase& c : cases) {
+    const json s = read_summary(c.run.run_dir);
+    if (s.is_discarded()) continue;
+    cases_by_commit[s.value("ddafrac_commit", not_recorded)].push_back(c.run.scene.name);
+  }
+  if (cases_by_commit.empty()) return "";
+  if (cases_by_commit.size() == 1) {
+    const std::string& commit = cases_by_commit.begin()->first;
+    return commit == not_recorded
+               ? "\nEngine: " + not_recorded + ".\n"
+               : fmt::format("\nEngine: the cases run so far were all run by the build of commit `{}`.\n", commit);
+  }
+  std::string md =
+      "\nEngines (the source commit of the build that ran each case; \"-dirty\": with uncommitted changes):\n";
+  for (const auto& [commit, names] : cases_by_commit) md += fmt::format("- `{}`: {}\n", commit, fmt::join(names, ", "));
+  return md;
 }
 
 }  // namespace
@@ -126,7 +148,7 @@ std::string case_table(const std::vector<StudyCase>& cases) {
         "\n{} static mode: t is a load parameter, the platen's travel over its speed (s), not a time; "
         "compare platen travel, not t, with the dynamic runs.\n",
         kPseudoTimeMark);
-  return md;
+  return md + engines(cases);
 }
 
 std::string study_markdown(const std::vector<StudyCase>& cases, const std::vector<std::string>& overrides,

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ddafrac/build_commit.hpp"
 #include "ddafrac/common/pvd.hpp"
 #include "ddafrac/dda/crack_metrics.hpp"
 #include "ddafrac/reference/analytic.hpp"
@@ -152,6 +153,7 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
   const Statistics& st = e.statistics();
   json j;
   j["ddafrac_version"] = DDAFRAC_VERSION;
+  j["ddafrac_commit"] = DDAFRAC_COMMIT;  // which engine wrote these results
   j["scene"] = {{"name", sc.name},
                 {"source", sc.source.string()},
                 {"mode", mode_name(an.mode)},

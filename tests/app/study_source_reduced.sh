@@ -5,7 +5,8 @@
 #   - the resume keeps the finished first case (not run again: its files untouched);
 #   - --status lists it as done, the others as to do, and all as done at the end; --report then
 #     writes study.md with its row filled and the others "not run";
-#   - every case completed, study.md has a row for every case, study.csv lists them;
+#   - every case completed, study.md has a row for every case, study.csv lists them, and it
+#     names the one engine (build commit, as `ddafrac --version` gives it) that ran them all;
 #   - crack counts (total, tensile, shear) never decrease in any history.csv, nor the crack
 #     lengths and fragment counts in fragments.csv;
 #   - the largest |energy-balance error| of every run is within 1% (the run's own warning level);
@@ -57,6 +58,9 @@ grep -q "started  $first" "$work/resume.log" && fail "$first was run again"
 cases=$(tail -n +2 "$study/study.csv" | cut -d, -f1)
 cracked=0
 [ "$(echo "$cases" | wc -l)" = 22 ] || fail "study.csv does not list 22 cases"
+commit=$("$exe" --version | sed -n 's/.*(commit \(.*\))$/\1/p')
+grep -q "^Engine: the cases run so far were all run by the build of commit \`$commit\`" "$study/study.md" ||
+  fail "study.md does not name the engine $commit"
 for c in $cases; do
   grep -q "^| $c |" "$study/study.md" || fail "study.md has no row for $c"
   grep -q "^$c .* done$" "$work/status_end.log" || fail "--status does not list $c as done at the end"
