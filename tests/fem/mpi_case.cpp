@@ -31,7 +31,7 @@ constexpr int coarse_rings = 6;
 constexpr int profile_points = 11;
 const reference::Elastic rock{10.53e9, 0.12, 2050.0};
 
-/// Beside OUT: this rank's FILE_SUFFIX file (OUT.rankK.SUFFIX) holding `text`.
+/// Beside OUT, this rank's file OUT.rankK.SUFFIX holding `text`.
 void write_rank_file(const std::filesystem::path& out, const std::string& suffix, const std::string& text) {
   std::ofstream(out.string() + fmt::format(".rank{}.{}", fem::Environment::rank(), suffix)) << text << "\n";
 }

@@ -93,6 +93,7 @@ const std::string two_ranks = std::string(MPIEXEC) + " -np 2 --oversubscribe";
 
 Values run(const std::string& launcher, const std::filesystem::path& csv) {
   std::filesystem::remove(csv);
+  for (const int rank : {0, 1}) std::filesystem::remove(csv.string() + ".rank" + std::to_string(rank) + ".mesh");
   const std::string command = launcher + " \"" + FEM_MPI_CASE + "\" \"" + csv.string() + "\"";
   BOOST_TEST_MESSAGE("running " << command);
   const int status = std::system(command.c_str());
