@@ -83,7 +83,7 @@ std::vector<std::size_t> snapshot_cells(const std::filesystem::path& dir, std::s
   return out;
 }
 
-/// The first line of a text file, as a number or as text.
+/// The first line of a text file.
 std::string first_line(const std::filesystem::path& path) {
   const auto text = read_text(path);
   return text.substr(0, text.find('\n'));
@@ -91,9 +91,14 @@ std::string first_line(const std::filesystem::path& path) {
 
 const std::string two_ranks = std::string(MPIEXEC) + " -np 2 --oversubscribe";
 
+/// The file fem_mpi_case's rank writes beside BASE: BASE.rankK.SUFFIX.
+std::filesystem::path rank_file(const std::filesystem::path& base, int rank, const std::string& suffix) {
+  return base.string() + ".rank" + std::to_string(rank) + "." + suffix;
+}
+
 Values run(const std::string& launcher, const std::filesystem::path& csv) {
   std::filesystem::remove(csv);
-  for (const int rank : {0, 1}) std::filesystem::remove(csv.string() + ".rank" + std::to_string(rank) + ".mesh");
+  for (const int rank : {0, 1}) std::filesystem::remove(rank_file(csv, rank, "mesh"));
   const std::string command = launcher + " \"" + FEM_MPI_CASE + "\" \"" + csv.string() + "\"";
   BOOST_TEST_MESSAGE("running " << command);
   const int status = std::system(command.c_str());
@@ -137,10 +142,10 @@ BOOST_AUTO_TEST_CASE(serial_and_two_ranks_agree) {
     BOOST_TEST_MESSAGE(kind << ": largest |serial - np 2| / scale = " << w << " (scale " << scale[kind] << ")");
 
   // Only rank 0 meshed: rank 1 got its part of the triangulation, never the whole mesh.
-  const auto serial_nodes = std::stoul(first_line(dir / "serial.csv.rank0.mesh"));
+  const auto serial_nodes = std::stoul(first_line(rank_file(dir / "serial.csv", 0, "mesh")));
   BOOST_TEST(serial_nodes > 100u);
-  BOOST_TEST(std::stoul(first_line(dir / "np2.csv.rank0.mesh")) == serial_nodes);
-  BOOST_TEST(std::stoul(first_line(dir / "np2.csv.rank1.mesh")) == 0u);
+  BOOST_TEST(std::stoul(first_line(rank_file(dir / "np2.csv", 0, "mesh"))) == serial_nodes);
+  BOOST_TEST(std::stoul(first_line(rank_file(dir / "np2.csv", 1, "mesh"))) == 0u);
 }
 
 // A mesh that cannot be made on rank 0 is an error on every rank, not a rank left waiting in
@@ -149,9 +154,8 @@ BOOST_AUTO_TEST_CASE(a_meshing_error_on_the_first_rank_stops_every_rank) {
   const auto dir = std::filesystem::current_path() / "fem_mpi.out";
   std::filesystem::create_directories(dir);
   const auto out = dir / "mesh_error";
-  for (const int rank : {0, 1}) std::filesystem::remove(out.string() + ".rank" + std::to_string(rank) + ".error");
+  for (const int rank : {0, 1}) std::filesystem::remove(rank_file(out, rank, "error"));
   const std::string command = two_ranks + " \"" + FEM_MPI_CASE + "\" --mesh-error \"" + out.string() + "\"";
   BOOST_TEST(std::system(command.c_str()) != 0);
-  for (const int rank : {0, 1})
-    BOOST_TEST(first_line(out.string() + ".rank" + std::to_string(rank) + ".error") == "the test's generator fails");
+  for (const int rank : {0, 1}) BOOST_TEST(first_line(rank_file(out, rank, "error")) == "the test's generator fails");
 }
