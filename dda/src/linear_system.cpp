@@ -38,29 +38,38 @@ void index_nonzero_pairs(BlockMatrix& k, const ContactSet& t) {
   }
 }
 
-void multiply(const BlockMatrix& k, const BlockVector& x, BlockVector& y) {
+double dot(const BlockVector& a, const BlockVector& b) {
+  return detail::chunked_sum(static_cast<std::int64_t>(a.size()), [&](std::int64_t i) { return a[i].dot(b[i]); });
+}
+
+namespace {
+
+/// K's nonzero off-diagonal blocks in product order (SolverWorkspace::row_blocks).
+void copy_row_blocks(const BlockMatrix& k, std::vector<Mat6>& row_blocks) {
+  const auto entries = static_cast<std::int64_t>(k.row_pairs.size());
+  row_blocks.resize(k.row_pairs.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t m = 0; m < entries; ++m) row_blocks[m] = k.off[k.row_pairs[m]];
+}
+
+/// y = K x, parallel over block rows (each row gathers its nonzero pairs in the fixed list order).
+void multiply(const BlockMatrix& k, const std::vector<Mat6>& row_blocks, const BlockVector& x, BlockVector& y) {
   const auto n = static_cast<std::int64_t>(x.size());
   y.resize(x.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     Vec6 acc = k.diag[i] * x[i];
     for (Index m = k.row_offsets[i]; m < k.row_offsets[i + 1]; ++m) {
-      const Index p = k.row_pairs[m], other = k.row_others[m];
+      const Index other = k.row_others[m];
       // K_ab is stored for a < b: the row of a uses it, the row of b its transpose.
       if (other > i)
-        acc.noalias() += k.off[p] * x[other];
+        acc.noalias() += row_blocks[m] * x[other];
       else
-        acc.noalias() += k.off[p].transpose() * x[other];
+        acc.noalias() += row_blocks[m].transpose() * x[other];
     }
     y[i] = acc;
   }
 }
-
-double dot(const BlockVector& a, const BlockVector& b) {
-  return detail::chunked_sum(static_cast<std::int64_t>(a.size()), [&](std::int64_t i) { return a[i].dot(b[i]); });
-}
-
-namespace {
 
 SolveReport solve_pcg(const BlockMatrix& k, const BlockVector& b, BlockVector& x, const SolverSettings& cfg,
                       SolverWorkspace& w) {
@@ -81,7 +90,8 @@ SolveReport solve_pcg(const BlockMatrix& k, const BlockVector& b, BlockVector& x
     rep.converged = true;
     return rep;
   }
-  multiply(k, x, w.q);
+  copy_row_blocks(k, w.row_blocks);
+  multiply(k, w.row_blocks, x, w.q);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     w.r[i] = b[i] - w.q[i];
@@ -93,7 +103,7 @@ SolveReport solve_pcg(const BlockMatrix& k, const BlockVector& b, BlockVector& x
   const double target = cfg.tolerance * bnorm;
   int it = 0;
   while (rnorm > target && it < cfg.max_iterations) {
-    multiply(k, w.p, w.q);
+    multiply(k, w.row_blocks, w.p, w.q);
     const double pq = dot(w.p, w.q);
     if (!(pq > 0.0)) break;  // not positive definite (or NaN): give up, caller reports it
     const double alpha = rz / pq;

@@ -33,9 +33,6 @@ void index_nonzero_pairs(BlockMatrix& k, const ContactSet& topology);
 
 using BlockVector = std::vector<Vec6>;
 
-/// y = K x, parallel over block rows (each row gathers its nonzero pairs in the fixed list order).
-void multiply(const BlockMatrix& k, const BlockVector& x, BlockVector& y);
-
 /// Deterministic dot product (chunked, chunk sums added in order).
 double dot(const BlockVector& a, const BlockVector& b);
 
@@ -58,6 +55,9 @@ struct SolverSettings {
 struct SolverWorkspace {
   BlockVector r, z, p, q;
   std::vector<Mat6> preconditioner;  // inverted diagonal blocks
+  // The nonzero off-diagonal blocks in the order the products read them (row by row, each pair
+  // twice): PCG's products stream this copy instead of jumping to a row's lower neighbours' pairs.
+  std::vector<Mat6> row_blocks;
 };
 
 /// Solves K x = b; x holds the warm start on entry.
