@@ -791,12 +791,14 @@ const Contact* carry_contact_state(const std::vector<Contact>& previous, const C
 void build_contact_topology(ContactSet& set, std::size_t nb) {
   const auto& cs = set.contacts;
   const auto nc = static_cast<std::int64_t>(cs.size());
-  // The blocks of every contact, read once in parallel: the serial passes below then walk these
-  // small arrays instead of the contact records.
+  // The blocks of every contact, read once in parallel: the serial passes below (and the
+  // assembly, through vertex_blocks) then walk these small arrays instead of the contact records.
   std::vector<Index> low(cs.size()), high(cs.size());
   std::vector<std::uint8_t> starts_pair(cs.size());
+  set.vertex_blocks.resize(cs.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < nc; ++k) {
+    set.vertex_blocks[k] = cs[k].vblock;
     low[k] = cs[k].pair_low();
     high[k] = cs[k].pair_high();
     starts_pair[k] = k == 0 || cs[k - 1].pair_low() != low[k] || cs[k - 1].pair_high() != high[k];

@@ -105,7 +105,7 @@ void Engine::assemble(bool whole) {
       if (inactive(q) && q.fs_rhs == 0.0) continue;
       const Index contact = set_.block_contacts[m];
       const ContactLinearisation& lin = linear_[contact];
-      const bool vertex_side = cs[contact].vblock == i;
+      const bool vertex_side = set_.vertex_blocks[contact] == i;
       const Vec6& a = vertex_side ? lin.e : lin.g;
       const Vec6& b = vertex_side ? lin.es : lin.gs;
       if (q.kn_eff != 0.0) add_outer_product(k, q.kn_eff, a, a);
@@ -123,14 +123,20 @@ void Engine::assemble(bool whole) {
     if (!whole && std::none_of(coefficient_changed_.data() + pr.first, coefficient_changed_.data() + pr.last,
                                [](std::uint8_t changed) { return changed != 0; }))
       continue;
+    // Most pairs of an intact body have only open contacts: found before any block is zeroed.
+    const auto first_active = static_cast<Index>(
+        std::find_if_not(coefficients_.data() + pr.first, coefficients_.data() + pr.last, inactive) -
+        coefficients_.data());
+    const bool nonzero = first_active < pr.last;
+    if (matrix_.off_nonzero[p] != (nonzero ? 1 : 0)) nonzero_pairs_changed = true;
+    matrix_.off_nonzero[p] = nonzero ? 1 : 0;
+    if (!nonzero) continue;
     Mat6 k = Mat6::Zero();
-    bool nonzero = false;
-    for (Index m = pr.first; m < pr.last; ++m) {
+    for (Index m = first_active; m < pr.last; ++m) {
       const ContactCoefficients& q = coefficients_[m];
       if (inactive(q)) continue;
-      nonzero = true;
       const ContactLinearisation& lin = linear_[m];
-      const bool v_is_a = cs[m].vblock == pr.a;
+      const bool v_is_a = set_.vertex_blocks[m] == pr.a;
       const Vec6& na = v_is_a ? lin.e : lin.g;
       const Vec6& nb = v_is_a ? lin.g : lin.e;
       const Vec6& sa = v_is_a ? lin.es : lin.gs;
@@ -138,9 +144,7 @@ void Engine::assemble(bool whole) {
       if (q.kn_eff != 0.0) add_outer_product(k, q.kn_eff, na, nb);
       if (q.ks_eff != 0.0) add_outer_product(k, q.ks_eff, sa, sb);
     }
-    if (matrix_.off_nonzero[p] != (nonzero ? 1 : 0)) nonzero_pairs_changed = true;
-    matrix_.off_nonzero[p] = nonzero ? 1 : 0;
-    if (nonzero) matrix_.off[p] = k;
+    matrix_.off[p] = k;
   }
   if (nonzero_pairs_changed) index_nonzero_pairs(matrix_, set_);
 }
