@@ -15,7 +15,7 @@ summary.json, scene.resolved.toml, history.csv, gauges.csv and loading.csv, and 
     figures/slot_tips.png       case 4's crack measures against the element size at the slot's ends
     figures/rate.png            the flattened disc's force-displacement curves per platen speed,
                                 and the peak force against speed
-    figures/penalty_theta.png   the θ series' crack counts at kn = 10·E
+    figures/penalty_theta.png   the θ series' crack counts and lengths at the scene's kn and at 10·E
 
 Only runs that completed are analysed; the others are listed as missing. Every PNG and
 analysis.md are written whole (temporary name, then rename).
@@ -453,16 +453,31 @@ def rate_section(h, runs, figures, save):
 
 
 def theta_section(runs, figures, save):
-    runs = sorted(runs, key=lambda r: r["scene"].get("geometry", {}).get("joint_angle", 0.0))
+    """The θ series at each kn the family ran (the scene's and 10·E), one table and one line each."""
     angle = lambda r: r["scene"].get("geometry", {}).get("joint_angle")  # noqa: E731
-    md = "## The θ series at kn = 10·E\n\n" + measure_table(runs, "θ (°)", angle) + "\n"
-    figure, axes = plt.subplots(figsize=(7, 4.5))
-    for label, key in (("tensile", "tensile"), ("shear", "shear")):
-        axes.plot([angle(r) for r in runs], [r["cracks"].get(key) for r in runs], "o-", label=label)
-    axes.set_xlabel("joint angle θ (°)")
-    axes.set_ylabel("cracks at the end")
-    axes.legend()
-    axes.grid(alpha=0.3)
+    stiffness = lambda r: r["kn"] / r["young"]  # noqa: E731
+    by_stiffness = {}
+    for r in sorted(runs, key=lambda r: (stiffness(r), angle(r) or 0.0)):
+        by_stiffness.setdefault(stiffness(r), []).append(r)
+    md = "## The θ series at the scene's kn and at kn = 10·E\n\n"
+    figure, (counts, lengths) = plt.subplots(1, 2, figsize=(13, 4.5))
+    for ratio, series in by_stiffness.items():
+        label = f"kn = {ratio:.3g}·E"
+        md += f"### {label}\n\n" + measure_table(series, "θ (°)", angle) + "\n"
+        angles = [angle(r) for r in series]
+        line, = counts.plot(angles, [r["cracks"].get("tensile") for r in series], "o-", label=f"{label}, tensile")
+        counts.plot(angles, [r["cracks"].get("shear") for r in series], "s--", color=line.get_color(),
+                    label=f"{label}, shear")
+        lengths.plot(angles, [scaled(r["length"], MILLIMETRES) for r in series], "o-", label=label)
+    counts.set_ylabel("cracks at the end")
+    lengths.set_ylabel("crack length at the end (mm)")
+    for axes in (counts, lengths):
+        # A disc as stiff as its rock breaks tens of times more joints: a log scale that keeps 0.
+        axes.set_yscale("symlog", linthresh=1.0)
+        axes.set_xlabel("joint angle θ (°)")
+        axes.legend()
+        axes.grid(alpha=0.3)
+    figure.suptitle("the θ series (cases 1–7) against the joints' stiffness, one mesh size")
     save(figure, os.path.join(figures, "penalty_theta.png"))
     return md
 
