@@ -63,22 +63,21 @@ def run_table(h, run_dir, name):
 
 def draw_counts(h, series, cases, out_dir, save):
     figure, axes = plt.subplots(2, 2, figsize=(12, 8), sharex=True)
-    drawn = False
+    width = None  # µs, the intervals' length (the series' cases share it); None: nothing drawn
     for case, run_dir in cases:
         history = run_table(h, run_dir, "history.csv")
         intervals = run_table(h, run_dir, "crack_intervals.csv")
         if history is None or intervals is None:
-            continue
-        drawn = True
+            continue  # not run (yet): the other cases of the series are still drawn
         t = h.numbers(history, "t") * MICROSECONDS
         edges = np.concatenate((h.numbers(intervals, "interval_start")[:1], h.numbers(intervals, "interval_end")))
+        width = (edges[1] - edges[0]) * MICROSECONDS
         for column, (kind, key) in enumerate(KINDS):
             axes[0][column].plot(t, h.numbers(history, key), label=case)
             axes[1][column].stairs(h.numbers(intervals, kind), edges * MICROSECONDS, label=case)
-    if not drawn:
+    if width is None:
         plt.close(figure)
         return
-    width = (h.numbers(intervals, "interval_end") - h.numbers(intervals, "interval_start"))[0] * MICROSECONDS
     for column, (kind, _) in enumerate(KINDS):
         axes[0][column].set_title(f"{series}: cumulative {kind} cracks")
         axes[1][column].set_title(f"new {kind} cracks per {width:g} µs")
