@@ -24,7 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-constexpr const char* kStudyFile = "study.json";  // --set values and the running study's pid
+constexpr const char* kStudyFile = "study.json";  // --set values, the kind's options and the running study's pid
 
 /// Runs that go at once: --parallel (default the cores), but no more than there are to run.
 int runs_at_once(int parallel, std::size_t cases_to_run) {
@@ -44,8 +44,9 @@ json read_study_file(const fs::path& out) {
   return text ? json::parse(*text, nullptr, false) : json();
 }
 
-void write_study_file(const fs::path& out, const std::vector<std::string>& overrides, long pid) {
-  common::write_whole_text(out / kStudyFile, json{{"set", overrides}, {"pid", pid}}.dump(2) + "\n");
+void write_study_file(const fs::path& out, const StudyKind& kind, const std::vector<std::string>& overrides, long pid) {
+  common::write_whole_text(out / kStudyFile,
+                           json{{"set", overrides}, {"options", kind.options}, {"pid", pid}}.dump(2) + "\n");
 }
 
 /// The --set values: those given, or else those the study in `out` was started with.
@@ -173,7 +174,7 @@ void run_study(const StudyKind& kind, const StudyArguments& args) {
                out.string(),
                overrides.empty() ? std::string() : fmt::format(" (--set {})", fmt::join(overrides, " --set ")));
     fs::create_directories(out);
-    write_study_file(out, overrides, ::getpid());
+    write_study_file(out, kind, overrides, ::getpid());
   }
   // The tables after every case: an interrupted study leaves those of the cases done so far.
   run_cases(runs, {threads, parallel, args.checkpoint_every, overrides,
@@ -181,7 +182,7 @@ void run_study(const StudyKind& kind, const StudyArguments& args) {
   if (!ranks.is_root()) return;
   for (std::size_t k = 0; k < cases.size(); ++k) cases[k].run = runs[k];
   write_report(kind, out, whole_study(all, cases), overrides);
-  write_study_file(out, overrides, 0);
+  write_study_file(out, kind, overrides, 0);
 
   const auto failed = std::count_if(runs.begin(), runs.end(), [](const CaseRun& c) { return c.exit_code != 0; });
   if (failed > 0) throw CommandFailed(fmt::format("{} of {} cases failed (see their run.log)", failed, runs.size()));
@@ -198,6 +199,18 @@ std::string study_csv(const std::vector<StudyCase>& cases, const fs::path& out) 
                        csv_field(fs::relative(c.run.run_dir, out).string()), reason);
   }
   return csv;
+}
+
+std::map<std::string, std::string> stored_study_options(const fs::path& out) {
+  const json study = read_study_file(out);
+  std::map<std::string, std::string> options;
+  if (!study.is_object() || !study.contains("options") || !study["options"].is_object()) return options;
+  for (const auto& [key, value] : study["options"].items()) {
+    if (!value.is_string())
+      throw CommandFailed(fmt::format("{}: options.{} is not text; was the file edited?", (out / kStudyFile).string(), key));
+    options[key] = value.get<std::string>();
+  }
+  return options;
 }
 
 std::vector<StudyCase> choose_cases(std::vector<StudyCase> all, const std::vector<std::string>& names,
@@ -233,7 +246,8 @@ void add_study_options(CLI::App& command, StudyArguments& args, const std::strin
   command.add_option("--out", args.out, "study directory")->capture_default_str();
   auto* resume = command.add_flag("--resume", args.resume,
                                   "keep the cases that finished with the scene they have now, continue stopped ones "
-                                  "from their checkpoints, run the rest (with the --set values the study began with)");
+                                  "from their checkpoints, run the rest (with the --set values, and the options that choose the cases, "
+                                  "the study began with)");
   auto* status = command.add_flag(
       "--status", args.status, "list the cases as done / running / failed / to do with their run times; run nothing");
   status->excludes(resume);

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,6 +46,10 @@ struct StudyKind {
   std::function<std::string(const std::vector<StudyCase>& cases, const std::vector<std::string>& overrides,
                             const std::vector<std::string>& figures)>
       markdown;
+  /// The kind's own options that choose its cases besides --set (sensitivity's --family and
+  /// --blocks), as text: written to study.json, so that a later --status, --report or --resume
+  /// given without them reads them back (stored_study_options) and lists the same cases.
+  std::map<std::string, std::string> options;
 };
 
 /// study.csv: case, series, run_dir (relative to `out`), state of its summary.json.
@@ -55,6 +60,10 @@ std::string study_csv(const std::vector<StudyCase>& cases, const std::filesystem
 /// the study. `args` must outlive the command (the callback refers to it).
 void add_study_options(CLI::App& command, StudyArguments& args, const std::string& default_out,
                        const std::string& set_help, std::function<StudyKind()> kind);
+
+/// The options (StudyKind::options) the study in `out` was started with; empty if there is no
+/// study there or it recorded none.
+std::map<std::string, std::string> stored_study_options(const std::filesystem::path& out);
 
 /// Only the cases named in `names` (all when empty), in that order; throws CommandFailed
 /// listing the cases when a name is unknown.

@@ -9,9 +9,12 @@
 #include <fmt/ranges.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
+#include <sstream>
+#include <string>
 
 #include "commands.hpp"
 #include "ddafrac/common/whole_file.hpp"
@@ -59,6 +62,9 @@ constexpr double kPlatenSpeeds[] = {1.0, 0.5, 0.25, 0.125};
 constexpr double kStaticTimeStretch = 1e4;
 constexpr const char* kPlaten = "top_platen";  // the prescribed body of the Brazilian scenes
 constexpr const char* kFamilies[] = {"mesh", "penalty", "penalty-theta", "timestep", "slot-tips", "rate"};
+// The names under which study.json records --family and --blocks (StudyKind::options).
+constexpr const char* kFamilyOption = "family";
+constexpr const char* kBlocksOption = "blocks";
 
 struct SensitivityArguments : StudyArguments {
   std::vector<std::string> families;  // empty: all
@@ -303,6 +309,34 @@ std::vector<StudyCase> load_study(const SensitivityArguments& args, const std::v
   return cases;
 }
 
+/// --family and --blocks as the study in `out` recorded them (StudyKind::options): a --status,
+/// --report or --resume without them is about the same cases as the run that started it.
+void restore_options(SensitivityArguments& args, const std::map<std::string, std::string>& stored,
+                     const fs::path& out) {
+  const auto bad = [&out](const char* key, const std::string& value, const std::string& expected) {
+    return CommandFailed(fmt::format("{}: options.{} is '{}', expected {}; was the file edited?",
+                                     (out / "study.json").string(), key, value, expected));
+  };
+  if (const auto it = stored.find(kFamilyOption); it != stored.end()) {
+    std::stringstream list(it->second);
+    for (std::string family; std::getline(list, family, ',');) {
+      if (std::find(std::begin(kFamilies), std::end(kFamilies), family) == std::end(kFamilies))
+        throw bad(kFamilyOption, it->second, fmt::format("families among {}", fmt::join(kFamilies, ", ")));
+      args.families.push_back(family);
+    }
+  }
+  if (const auto it = stored.find(kBlocksOption); it != stored.end()) {
+    std::size_t used = 0;
+    try {
+      args.blocks = std::stoi(it->second, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != it->second.size() || args.blocks < 0)
+      throw bad(kBlocksOption, it->second, "a whole number of blocks (0: the scenes' own size)");
+  }
+}
+
 std::string study_markdown(const std::vector<StudyCase>& cases, const SensitivityArguments& args,
                            const std::vector<std::string>& overrides, const std::vector<std::string>& figures) {
   std::string md = "# How far the fracture results can be trusted: the sensitivity study\n\n";
@@ -341,6 +375,8 @@ void register_study_sensitivity(CLI::App& study) {
       *command, *args, "study-sensitivity",
       "override a value of every case, e.g. --set analysis.end_time=6e-4 (not mesh.blocks: use --blocks)", [args] {
         const fs::path out(args->out);
+        if ((args->status || args->report || args->resume) && args->families.empty() && args->blocks == 0)
+          restore_options(*args, stored_study_options(out), out);
         StudyKind kind;
         kind.command = "study sensitivity";
         kind.figures_command = "study-sensitivity";
@@ -351,6 +387,8 @@ void register_study_sensitivity(CLI::App& study) {
                                const std::vector<std::string>& figures) {
           return study_markdown(cases, *args, overrides, figures);
         };
+        kind.options = {{kFamilyOption, fmt::format("{}", fmt::join(args->families, ","))},
+                        {kBlocksOption, std::to_string(args->blocks)}};
         return kind;
       });
 }

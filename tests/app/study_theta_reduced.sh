@@ -10,6 +10,8 @@
 #     period (its run did not warn), as the family promises;
 #   - analysis.md has the θ section with a table per kn, each with one row per θ, and
 #     figures/penalty_theta.png;
+#   - --status and --report without --family and --blocks are about the same cases, and a
+#     study.json whose record of them was edited is refused, naming the key;
 #   - one case gives the same files on 2 threads.
 # Usage: study_theta_reduced.sh DDAFRAC WORK_DIR
 set -u
@@ -33,7 +35,14 @@ code=$?
 cat "$work/study.log"
 [ $code = 0 ] || fail "the study failed (exit status $code)"
 
+# --status and --report given without --family and --blocks take those the study began with: the
+# same cases, not the full-size study of every family. The checks below read that report.
+"$exe" study sensitivity --out "$study" --status > "$work/status.log" 2>&1 || { cat "$work/status.log"; fail "--status failed"; }
+cat "$work/status.log"
+grep -q -- "-5550" "$work/status.log" && fail "--status without --family and --blocks lists full-size cases"
+"$exe" study sensitivity --out "$study" --report > "$work/report.log" 2>&1 || { cat "$work/report.log"; fail "--report failed"; }
 for c in ${cases//,/ }; do
+  grep -q "^$c .* done$" "$work/status.log" || fail "--status without --family and --blocks does not list $c as done"
   grep -q "^| $c |" "$study/study.md" || fail "study.md has no row for $c"
   check_run "$c" "$study/$c"
 done
@@ -64,6 +73,14 @@ scene_rows=$(theta_rows scene)
   fail "the θ section's table at the scenes' kn has rows '$scene_rows', not case01-700 at 0 and case07-700 at 90"
 echo "analysis.md: θ rows at 10·E: $stiff_rows; at the scenes' kn: $scene_rows"
 [ -s "$study/figures/penalty_theta.png" ] || fail "no figures/penalty_theta.png"
+
+# A study.json whose recorded --blocks was edited into something else is refused, naming the key.
+damaged="$work/damaged"
+mkdir -p "$damaged" && sed 's/"blocks": "700"/"blocks": "7OO"/' "$study/study.json" > "$damaged/study.json"
+grep -q '"7OO"' "$damaged/study.json" || fail "study.json does not record --blocks 700"
+"$exe" study sensitivity --out "$damaged" --status > "$work/damaged.log" 2>&1 && fail "--status took a damaged study.json"
+grep -q "options.blocks is '7OO', expected a whole number" "$work/damaged.log" ||
+  { cat "$work/damaged.log"; fail "--status of a damaged study.json does not say what is wrong"; }
 
 first=${stiff_cases%% *}
 check_same_on_two_threads "$first" "$study/$first" "$exe" "$work/two_threads" "$study/scenes/$first.toml" "${set_args[@]}"
