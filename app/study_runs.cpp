@@ -207,7 +207,8 @@ std::map<std::string, std::string> stored_study_options(const fs::path& out) {
   if (!study.is_object() || !study.contains("options") || !study["options"].is_object()) return options;
   for (const auto& [key, value] : study["options"].items()) {
     if (!value.is_string())
-      throw CommandFailed(fmt::format("{}: options.{} is not text; was the file edited?", (out / kStudyFile).string(), key));
+      throw CommandFailed(
+          fmt::format("{}: options.{} is not text; was the file edited?", (out / kStudyFile).string(), key));
     options[key] = value.get<std::string>();
   }
   return options;
@@ -244,10 +245,11 @@ void add_study_options(CLI::App& command, StudyArguments& args, const std::strin
                        const std::string& set_help, std::function<StudyKind()> kind) {
   args.out = default_out;
   command.add_option("--out", args.out, "study directory")->capture_default_str();
-  auto* resume = command.add_flag("--resume", args.resume,
-                                  "keep the cases that finished with the scene they have now, continue stopped ones "
-                                  "from their checkpoints, run the rest (with the --set values, and the options that choose the cases, "
-                                  "the study began with)");
+  auto* resume = command.add_flag(
+      "--resume", args.resume,
+      "keep the cases that finished with the scene they have now, continue stopped ones "
+      "from their checkpoints, run the rest (with the --set values, and the options that choose the cases, "
+      "the study began with)");
   auto* status = command.add_flag(
       "--status", args.status, "list the cases as done / running / failed / to do with their run times; run nothing");
   status->excludes(resume);
