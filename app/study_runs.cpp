@@ -201,6 +201,8 @@ std::string study_csv(const std::vector<StudyCase>& cases, const fs::path& out) 
   return csv;
 }
 
+fs::path study_file(const fs::path& out) { return out / kStudyFile; }
+
 std::map<std::string, std::string> stored_study_options(const fs::path& out) {
   const json study = read_study_file(out);
   std::map<std::string, std::string> options;
@@ -208,7 +210,7 @@ std::map<std::string, std::string> stored_study_options(const fs::path& out) {
   for (const auto& [key, value] : study["options"].items()) {
     if (!value.is_string())
       throw CommandFailed(
-          fmt::format("{}: options.{} is not text; was the file edited?", (out / kStudyFile).string(), key));
+          fmt::format("{}: options.{} is not text; was the file edited?", study_file(out).string(), key));
     options[key] = value.get<std::string>();
   }
   return options;

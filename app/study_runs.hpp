@@ -61,6 +61,9 @@ std::string study_csv(const std::vector<StudyCase>& cases, const std::filesystem
 void add_study_options(CLI::App& command, StudyArguments& args, const std::string& default_out,
                        const std::string& set_help, std::function<StudyKind()> kind);
 
+/// The study file of the study in `out` (study.json: its --set values, options and pid).
+std::filesystem::path study_file(const std::filesystem::path& out);
+
 /// The options (StudyKind::options) the study in `out` was started with; empty if there is no
 /// study there or it recorded none.
 std::map<std::string, std::string> stored_study_options(const std::filesystem::path& out);

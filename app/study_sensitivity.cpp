@@ -315,7 +315,7 @@ void restore_options(SensitivityArguments& args, const std::map<std::string, std
                      const fs::path& out) {
   const auto bad = [&out](const char* key, const std::string& value, const std::string& expected) {
     return CommandFailed(fmt::format("{}: options.{} is '{}', expected {}; was the file edited?",
-                                     (out / "study.json").string(), key, value, expected));
+                                     study_file(out).string(), key, value, expected));
   };
   if (const auto it = stored.find(kFamilyOption); it != stored.end()) {
     std::stringstream list(it->second);
