@@ -15,10 +15,14 @@ StepEnergy& StepEnergy::operator+=(const StepEnergy& o) {
   return *this;
 }
 
-double EnergyLedger::balance_error() const {
+double EnergyLedger::scale() const {
   const double supplied = initial + work();
-  const double scale = supplied > 0.0 ? supplied : std::max(stored.stored(), dissipated());
-  return scale > 0.0 ? residual() / scale : 0.0;
+  return supplied > 0.0 ? supplied : std::max(stored.stored(), dissipated());
+}
+
+double EnergyLedger::balance_error() const {
+  const double s = scale();
+  return s > 0.0 ? residual() / s : 0.0;
 }
 
 namespace {

@@ -66,6 +66,9 @@ struct EnergyLedger {
   /// With nothing to compare against (initial + work ≤ 0) it is relative to the largest of the
   /// stored and dissipated energies.
   double balance_error() const;
+  /// What balance_error() divides by, J/m: initial + work, else the larger of stored and
+  /// dissipated.
+  double scale() const;
   double largest_balance_error = 0.0;  // largest |balance_error()| after any step so far
 };
 
