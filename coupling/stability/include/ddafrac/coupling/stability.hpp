@@ -94,7 +94,7 @@ struct StabilityResult {
   long cuts_displacement = 0, cuts_open_close = 0, cuts_solver = 0;
   double dt_min = 0.0, dt_max = 0.0;  // s, accepted steps
   long cracks = 0;
-  long missed_contacts = 0;     // first detected deeper than one step's allowed displacement
+  long missed_contacts = 0;     // came in deep (dda::Statistics::missed_contacts)
   double deepest_missed = 0.0;  // m
   double wall = 0.0;            // s, meshing included
   int exit_status = 0;          // as `ddafrac run`: 0 completed, 3 numerical trouble (1 other errors)
