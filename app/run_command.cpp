@@ -337,7 +337,8 @@ void run_run(const RunArguments& given) {
                "fails in shear, the vertices of its second block are first detected at the joint's compression; a "
                "corner of two triangles that share only a mesh node passes to the copy of the node that sank unseen "
                "(see missed_contacts in summary.json, docs/results/study_full_size.md and docs/design.md §4.6)\n",
-               st.missed_contacts, st.deepest_missed, engine->allowed_displacement(), 100.0 * dda::kDeepContactEnergyFraction);
+               st.missed_contacts, st.deepest_missed, engine->allowed_displacement(),
+               100.0 * dda::kDeepContactEnergyFraction);
   if (st.initial_overlaps > 0)
     fmt::print(stderr,
                "warning: at t = 0, {} contact(s) already overlapped by more than one step's allowed displacement "
