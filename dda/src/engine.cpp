@@ -158,7 +158,7 @@ void Engine::detect() {
     const double overlap = std::max(-c.d0, 0.0);
     const bool new_line = !p || p->vertex != c.vertex || p->edge0 != c.edge0;
     const double taken = 0.5 * c.kn * overlap * overlap - (p ? p->stored_normal : 0.0);  // J/m
-    if (!first && ((!c.carried && overlap > allowed_) || (new_line && taken > deep_energy))) {
+    if (!first && ((!p && overlap > allowed_) || (new_line && taken > deep_energy))) {
       ++missed;
       deepest = std::max(deepest, overlap);
     }

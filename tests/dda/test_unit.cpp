@@ -22,6 +22,11 @@ namespace {
 /// Closed forms are exact up to round-off: 1e-12 relative.
 constexpr double kExact = 1e-12;
 bool close(double a, double b, double tol) { return std::abs(a - b) <= tol * std::max(1.0, std::abs(b)); }
+/// How far vertex v lies behind the line of the CCW edge e0 -> e1, m (positive: on the block's side).
+double depth_behind_edge(const BlockSystem& b, Index v, Index e0, Index e1) {
+  const double ex = b.vx[e1] - b.vx[e0], ey = b.vy[e1] - b.vy[e0];
+  return (ex * (b.vy[v] - b.vy[e0]) - ey * (b.vx[v] - b.vx[e0])) / std::hypot(ex, ey);
+}
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(rectangle_far_from_origin) {
@@ -210,8 +215,7 @@ BOOST_AUTO_TEST_CASE(a_node_copy_inside_the_other_block_holds_the_node_contact) 
   b.vy[copy_in_a] = -0.3123 * kMm;
   // Its depth behind b's edge from (1.928, -2.342) mm into the node (b's nearest edge).
   const Index edge0 = b.begin(1) + 1, edge1 = b.begin(1) + 2;
-  const double ex = b.vx[edge1] - b.vx[edge0], ey = b.vy[edge1] - b.vy[edge0];
-  const double depth = (ex * (b.vy[copy_in_a] - b.vy[edge0]) - ey * (b.vx[copy_in_a] - b.vx[edge0])) / std::hypot(ex, ey);
+  const double depth = depth_behind_edge(b, copy_in_a, edge0, edge1);
   BOOST_TEST_REQUIRE(depth > 2.0 * o.allowed_displacement);  // not reached in one step
   e.step();
   const auto& contacts = e.contacts().contacts;
@@ -256,9 +260,7 @@ BOOST_AUTO_TEST_CASE(a_node_corner_passing_to_the_copy_that_sank_unseen_counts_a
   BOOST_TEST_REQUIRE(e.contacts().contacts.front().vertex == copy_in_a);  // the corner holds a's copy
   b.vy[copy_in_a] = b.vy[copy_in_b] + kInside;  // a's copy leaves b (b's edge into the node is level)
   // b's copy's depth behind a's edge from its far vertex into a's copy, as the next step finds it.
-  const double ex = b.vx[copy_in_a] - b.vx[a_far], ey = b.vy[copy_in_a] - b.vy[a_far];
-  const double depth =
-      (ex * (b.vy[copy_in_b] - b.vy[a_far]) - ey * (b.vx[copy_in_b] - b.vx[a_far])) / std::hypot(ex, ey);
+  const double depth = depth_behind_edge(b, copy_in_b, a_far, copy_in_a);
   e.step();
   BOOST_TEST_REQUIRE(e.contacts().contacts.size() == 1u);
   const Contact& c = e.contacts().contacts.front();
