@@ -178,19 +178,36 @@ EntranceLine entrance_line(const View& w, Index p, Index v, Index q) {
   return {least_deep, false};
 }
 
+/// Two copies of a mesh node (v of a, u of b; held_node_copies) are one corner, but as the pieces
+/// around them move they drift apart, and the edges into them may overlap as a sliver with each
+/// copy inside the other block. The corner's line (the largest gap) measures the sliver's thin
+/// end; the copy at its thick end is the one the spring must hold. So the node's contact holds
+/// whichever is deeper, the corner on its line or a copy inside the other block on its entrance
+/// line: its spring's energy, ½·kn·(the larger depth)², then changes continuously as the copies
+/// move (the larger of two continuous depths switches where they are equal). Held at the thin end,
+/// the other copy sank unseen until the end opened and its depth came in at once (case 4 at
+/// kn = 10·E: 3.6 µm, +0.66 J/m in one step; a flattened disc's fragments: 18 µm, +2%).
+Candidate deeper_node_copy(const View& w, Index a, Index v, Index b, Index u, const Candidate& corner) {
+  Candidate held = corner.valid && corner.d <= 0.0 ? corner : Candidate{};
+  const Index copies[2][3] = {{a, v, b}, {b, u, a}};  // vertex block, copy, block it may lie inside
+  for (const auto& c : copies) {
+    if (held.valid && held.vertex == c[1]) continue;  // measured on the corner's line already
+    if (!inside_block(w, c[2], w.x(c[1]), w.y(c[1]))) continue;
+    Candidate line = entrance_line(w, c[0], c[1], c[2]).line;
+    if (held.valid && line.d >= held.d) continue;
+    line.vv = line.shared_node = true;
+    held = line;
+  }
+  return held.valid ? held : corner;
+}
+
 /// The one contact of the corner where vertex v of block a meets vertex u of block b, reduced to
 /// the reference line with the largest gap (the entrance line) among those the angle rules allow,
 /// or an invalid candidate. A closed corner keeps the reference line it had while the angle rules
 /// allow it: switching to another line of the same corner while overlapping would make the gap,
-/// and the energy of its spring, jump.
-/// Two copies of a mesh node held as one corner (held_node_copies) may drift farther apart than
-/// the capture radius as the pieces around them move. Where the corner is then open (or has no
-/// line) while one copy lies inside the other block and the other does not, they are no longer
-/// one corner: the copy inside holds the contact, on its entrance line. Measured from the other
-/// copy the corner stayed open while the copy inside sank unseen, until the angle rules switched
-/// line and the spring took the whole depth at once (a flattened disc's fragments: 18 µm, +2% of
-/// the energy balance in one step).
-Candidate corner_contact(const View& w, Index a, Index v, Index b, Index u, bool shared_node, double radius) {
+/// and the energy of its spring, jump. The copies of a shared mesh node hold the deeper of the
+/// corner and a copy inside the other block (deeper_node_copy).
+Candidate corner_contact(const View& w, Index a, Index v, Index b, Index u, bool shared_node) {
   const Index opts[4][4] = {{a, v, b, w.prev(b, u)}, {a, v, b, u}, {b, u, a, w.prev(a, v)}, {b, u, a, v}};
   const Index closed_edge_v = closed_corner_edge(w, a, v, b), closed_edge_u = closed_corner_edge(w, b, u, a);
   Candidate chosen, kept;
@@ -202,14 +219,7 @@ Candidate corner_contact(const View& w, Index a, Index v, Index b, Index u, bool
     if (o[3] == (o[1] == v ? closed_edge_v : closed_edge_u)) kept = option;
   }
   const Candidate corner = kept.valid ? kept : chosen;
-  if (!shared_node || (corner.valid && corner.d <= 0.0)) return corner;
-  const double dx = w.x(v) - w.x(u), dy = w.y(v) - w.y(u);
-  if (dx * dx + dy * dy <= radius * radius) return corner;
-  const bool v_inside = inside_block(w, b, w.x(v), w.y(v)), u_inside = inside_block(w, a, w.x(u), w.y(u));
-  if (v_inside == u_inside) return corner;
-  Candidate line = (v_inside ? entrance_line(w, a, v, b) : entrance_line(w, b, u, a)).line;
-  line.vv = line.shared_node = true;
-  return line;
+  return shared_node ? deeper_node_copy(w, a, v, b, u, corner) : corner;
 }
 
 /// Deepest penetration still paired between blocks a and b (kPenetrationEdgeFraction).
@@ -290,7 +300,7 @@ bool narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, c
   if (hint.quiet && hint.intact_joints == 0 && hint.node_copies && hint.node_v >= 0) {
     const double dx = w.x(hint.node_v) - w.x(hint.node_u), dy = w.y(hint.node_v) - w.y(hint.node_u);
     if (dx * dx + dy * dy <= depth * depth) {
-      Candidate corner = corner_contact(w, a, hint.node_v, b, hint.node_u, true, corner_radius(s, search, a, b));
+      Candidate corner = corner_contact(w, a, hint.node_v, b, hint.node_u, true);
       corner.joint = -1;  // blocks that share one node share no edge, so no joint either
       if (corner.valid) out.push_back(corner);
       return true;
@@ -357,7 +367,7 @@ bool narrow_phase(const View& w, Index a, Index b, const DetectionParams& prm, c
         if (dx * dx + dy * dy > vv2 || node_copy(v) || node_copy(u)) continue;
         if (wedge_gap(w, a, v, b, u) > prm.vv_max_gap_angle) continue;
       }
-      const Candidate chosen = corner_contact(w, a, v, b, u, shared_node, vv);
+      const Candidate chosen = corner_contact(w, a, v, b, u, shared_node);
       if (!chosen.valid) continue;
       offer(slot_of(chosen.vblock, chosen.vertex), chosen);
       role_of(a, v) = role_of(b, u) = kInCornerPair;
