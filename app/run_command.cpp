@@ -330,15 +330,15 @@ void run_run(const RunArguments& given) {
   const auto& cc = engine->crack_counts();
   fmt::print("cracks: {} ({} tensile, {} shear)\n", cc.total, cc.tensile, cc.shear);
   if (st.missed_contacts > 0)
-    fmt::print(stderr,
-               "warning: {} contact(s) came in deep (deepest {:.3g} m): first detected already deeper than one "
-               "step's allowed displacement ({:.3g} m), or their spring took more than {:.2g}% of the energy "
-               "balance at once; their springs released energy no work put in. Known sources: when a virtual joint "
-               "fails in shear, the vertices of its second block are first detected at the joint's compression; a "
-               "corner of two triangles that share only a mesh node passes to the copy of the node that sank unseen "
-               "(see missed_contacts in summary.json, docs/results/study_full_size.md and docs/design.md §4.6)\n",
-               st.missed_contacts, st.deepest_missed, engine->allowed_displacement(),
-               100.0 * dda::kDeepContactEnergyFraction);
+    fmt::print(
+        stderr,
+        "warning: {} contact(s) came in deep (deepest {:.3g} m): first detected already deeper than one "
+        "step's allowed displacement ({:.3g} m), or their spring took more than {:.2g}% of the energy "
+        "balance at once; their springs released energy no work put in. Known sources: when a virtual joint "
+        "fails in shear, the vertices of its second block are first detected at the joint's compression; a "
+        "corner of two triangles that share only a mesh node passes to a copy of the node that sank within one step "
+        "(see missed_contacts in summary.json, docs/results/study_full_size.md and docs/design.md §4.6)\n",
+        st.missed_contacts, st.deepest_missed, engine->allowed_displacement(), 100.0 * dda::kDeepContactEnergyFraction);
   if (st.initial_overlaps > 0)
     fmt::print(stderr,
                "warning: at t = 0, {} contact(s) already overlapped by more than one step's allowed displacement "

@@ -33,9 +33,9 @@ double sliding_shear_energy(double friction, double ks) { return ks > 0.0 ? 0.5 
 ContactEnergy contact_energy(const Contact& c) {
   ContactEnergy e;
   if (c.trial == ContactState::Open) return e;
-  e.normal = 0.5 * c.kn * c.d_iter * c.d_iter;
+  e.normal = spring_energy(c.kn, c.d_iter);
   if (c.trial == ContactState::Locked)
-    e.shear = 0.5 * c.ks * c.s_iter * c.s_iter;
+    e.shear = spring_energy(c.ks, c.s_iter);
   else
     e.shear = sliding_shear_energy(c.tan_phi * std::max(c.fn_iter, 0.0), c.ks);
   return e;

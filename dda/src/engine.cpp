@@ -152,12 +152,12 @@ void Engine::detect() {
     if (first && !bonded && c.state != ContactState::Open) start_cohesive(c);
     if (c.cohesive) ++cohesive;
     // A contact seen for the first time after step 1 already deeper than one step's allowed
-    // displacement, or whose spring takes a share of the balance at once, closed unseen
-    // (Statistics::missed_contacts).
-    // (On the line it had, the spring's energy changes only by the linearisation's error.)
+    // displacement, or taking a new line whose spring takes a share of the balance at once,
+    // closed unseen (Statistics::missed_contacts). On the line it had, the spring's energy
+    // changes only by the linearisation's error.
     const double overlap = std::max(-c.d0, 0.0);
     const bool new_line = !p || p->vertex != c.vertex || p->edge0 != c.edge0;
-    const double taken = 0.5 * c.kn * overlap * overlap - (p ? p->stored_normal : 0.0);  // J/m
+    const double taken = spring_energy(c.kn, overlap) - (p ? p->stored_normal : 0.0);  // J/m
     if (!first && ((!p && overlap > allowed_) || (new_line && taken > deep_energy))) {
       ++missed;
       deepest = std::max(deepest, overlap);

@@ -189,6 +189,42 @@ BOOST_AUTO_TEST_CASE(a_corner_entering_through_one_face_is_held_on_that_face) {
   BOOST_TEST(held->d0 == -kDepth, boost::test_tools::tolerance(1e-6));
 }
 
+namespace {
+/// Two triangles of one body that meet only at a mesh node (node 0 at the origin): a to the upper
+/// left of the node, its edge into the node coming from (a_far_x, a_far_y); b to the lower right,
+/// its edge into the node level (along -x). Both CCW.
+meshes::Mesh node_fan_pair(double a_far_x, double a_far_y) {
+  constexpr double kMm = 1e-3;  // m per mm
+  meshes::Mesh m;
+  m.body_names = {"rock"};
+  m.nodes = {{0.0, 0.0}, {a_far_x, a_far_y}, {-0.5 * kMm, 2.5 * kMm}, {-1.0 * kMm, -2.5 * kMm}, {3.0 * kMm, 0.0}};
+  m.cell_nodes = {1, 0, 2, 0, 3, 4};
+  m.cell_offsets = {0, 3, 6};
+  m.cell_body = {0, 0};
+  return m;
+}
+
+/// An engine on two triangles of one body that meet only at a mesh node, node 0 the second
+/// vertex of the first cell (a's copy of it: a_copy): no gravity, kn = 1e10 Pa, dt 1e-7 s, and a
+/// search distance of 5 µm (a capture radius well short of the copies' 0.1–0.4 mm drift below).
+struct NodeFan {
+  explicit NodeFan(const meshes::Mesh& m) : engine(scene(), m, options()), blocks(engine.blocks()) {}
+  static scene::Scene scene() {
+    auto s = testing::basic_scene(scene::Mode::Dynamic, 1e-7, 1e10, {0, 0});
+    s.bodies = {testing::body("rock")};
+    return s;
+  }
+  static EngineOptions options() {
+    EngineOptions o;
+    o.allowed_displacement = 2e-6;  // m
+    return o;
+  }
+  Engine engine;
+  BlockSystem& blocks;
+  const Index a_copy = blocks.begin(0) + 1;
+};
+}  // namespace
+
 // Two triangles of one body that meet only at a mesh node, after the pieces around the node
 // moved apart (about the geometry of a flattened disc's fragments at 1400 µs, mm about the
 // node): a's copy of the node lies 0.4 mm from b's, inside b, 7 µm behind b's edge into the
@@ -206,19 +242,16 @@ BOOST_AUTO_TEST_CASE(a_node_copy_inside_the_other_block_holds_the_node_contact) 
   m.cell_nodes = {1, 0, 2, 3, 4, 0};  // a above the node, b below it; both CCW
   m.cell_offsets = {0, 3, 6};
   m.cell_body = {0, 0};
-  auto s = testing::basic_scene(scene::Mode::Dynamic, 1e-7, 1e10, {0, 0});
-  s.bodies = {testing::body("rock")};
-  EngineOptions o;
-  o.allowed_displacement = 2e-6;  // m: a search distance of 5 µm, a capture radius well short of 0.4 mm
-  Engine e(s, m, o);
-  BlockSystem& b = e.blocks();
-  const Index copy_in_a = b.begin(0) + 1;  // a's copy of node 0
+  NodeFan fan(m);
+  Engine& e = fan.engine;
+  BlockSystem& b = fan.blocks;
+  const Index copy_in_a = fan.a_copy;
   b.vx[copy_in_a] = 0.2477 * kMm;
   b.vy[copy_in_a] = -0.3123 * kMm;
   // Its depth behind b's edge from (1.928, -2.342) mm into the node (b's nearest edge).
   const Index edge0 = b.begin(1) + 1, edge1 = b.begin(1) + 2;
   const double depth = depth_behind_edge(b, copy_in_a, edge0, edge1);
-  BOOST_TEST_REQUIRE(depth > 2.0 * o.allowed_displacement);  // not reached in one step
+  BOOST_TEST_REQUIRE(depth > 2.0 * e.allowed_displacement());  // not reached in one step
   e.step();
   const auto& contacts = e.contacts().contacts;
   BOOST_TEST_REQUIRE(contacts.size() == 1u);  // the node's one corner contact
@@ -229,42 +262,6 @@ BOOST_AUTO_TEST_CASE(a_node_copy_inside_the_other_block_holds_the_node_contact) 
   BOOST_TEST(c.edge0 == edge0);
   BOOST_TEST(c.d0 == -depth, boost::test_tools::tolerance(1e-9));
 }
-
-namespace {
-/// Two triangles of one body that meet only at a mesh node (node 0 at the origin): a to the upper
-/// left of the node, its edge into the node coming from (a_far_x, a_far_y); b to the lower right,
-/// its edge into the node level (along -x). Both CCW.
-meshes::Mesh node_fan_pair(double a_far_x, double a_far_y) {
-  constexpr double kMm = 1e-3;  // m per mm
-  meshes::Mesh m;
-  m.body_names = {"rock"};
-  m.nodes = {{0.0, 0.0}, {a_far_x, a_far_y}, {-0.5 * kMm, 2.5 * kMm}, {-1.0 * kMm, -2.5 * kMm}, {3.0 * kMm, 0.0}};
-  m.cell_nodes = {1, 0, 2, 0, 3, 4};
-  m.cell_offsets = {0, 3, 6};
-  m.cell_body = {0, 0};
-  return m;
-}
-
-/// An engine on node_fan_pair's triangles: no gravity, kn = 1e10 Pa, dt 1e-7 s, and a search
-/// distance of 5 µm (a capture radius well short of the copies' 107 µm drift below).
-struct NodeFan {
-  explicit NodeFan(double a_far_x, double a_far_y)
-      : engine(scene(), node_fan_pair(a_far_x, a_far_y), options()), blocks(engine.blocks()) {}
-  static scene::Scene scene() {
-    auto s = testing::basic_scene(scene::Mode::Dynamic, 1e-7, 1e10, {0, 0});
-    s.bodies = {testing::body("rock")};
-    return s;
-  }
-  static EngineOptions options() {
-    EngineOptions o;
-    o.allowed_displacement = 2e-6;  // m
-    return o;
-  }
-  Engine engine;
-  BlockSystem& blocks;
-  const Index copy_in_a = blocks.begin(0) + 1, copy_in_b = blocks.begin(1), a_far = blocks.begin(0);
-};
-}  // namespace
 
 // The copies of a mesh node drift apart along the edges into the node (case 4 at kn = 10·E near
 // 71 µs: 107 µm along b's level edge, a's edge 1.9° down from it), and the edges overlap as a
@@ -278,10 +275,10 @@ BOOST_AUTO_TEST_CASE(a_node_corner_holds_the_deeper_copy_of_a_sliver) {
   constexpr double kMm = 1e-3;                              // m per mm
   constexpr double kDrift = 0.107 * kMm, kInside = 0.1e-6;  // m: a's copy along and behind b's edge
   constexpr double kSlide = 1e-6, kRise = 0.02e-6;          // m: a's copy's moves between steps
-  NodeFan fan(-3.0 * kMm, -0.1 * kMm);                      // a's edge 1.9° down into the node
+  NodeFan fan(node_fan_pair(-3.0 * kMm, -0.1 * kMm));       // a's edge 1.9° down into the node
   Engine& e = fan.engine;
   BlockSystem& b = fan.blocks;
-  const Index copy_in_a = fan.copy_in_a, copy_in_b = fan.copy_in_b, a_far = fan.a_far;
+  const Index copy_in_a = fan.a_copy, copy_in_b = b.begin(1), a_far = b.begin(0);
   const std::vector<double> x0 = b.vx, y0 = b.vy;
   double thick_end = 0.0;  // m: b's copy's depth behind a's edge into the node, as detection finds it
   // The depth the node's contact holds with a's copy at (x, y), every other vertex where it began.
@@ -328,10 +325,10 @@ BOOST_AUTO_TEST_CASE(a_node_corner_holds_the_deeper_copy_of_a_sliver) {
 BOOST_AUTO_TEST_CASE(a_node_corner_passing_to_a_copy_that_sank_in_one_step_counts_as_come_in_deep) {
   constexpr double kMm = 1e-3;                              // m per mm
   constexpr double kDrift = 0.107 * kMm, kInside = 0.1e-6;  // m: a's copy along and behind b's edge
-  NodeFan fan(-3.0 * kMm, 0.1 * kMm);                       // a's edge into the node 1.9° up: b's copy outside a
+  NodeFan fan(node_fan_pair(-3.0 * kMm, 0.1 * kMm));        // a's edge into the node 1.9° up: b's copy outside a
   Engine& e = fan.engine;
   BlockSystem& b = fan.blocks;
-  const Index copy_in_a = fan.copy_in_a, copy_in_b = fan.copy_in_b, a_far = fan.a_far;
+  const Index copy_in_a = fan.a_copy, copy_in_b = b.begin(1), a_far = b.begin(0);
   b.vx[copy_in_a] = kDrift;
   b.vy[copy_in_a] = -kInside;
   e.step();

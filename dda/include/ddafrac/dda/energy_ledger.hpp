@@ -33,6 +33,9 @@ struct Energies {
   double stored() const { return kinetic + strain + contact + support; }
 };
 
+/// Energy of a spring of stiffness k (N/m per m) stretched or compressed by x (m): ½·k·x², J/m.
+inline double spring_energy(double k, double x) { return 0.5 * k * x * x; }
+
 /// Energy a contact's springs store at the end of an accepted step, J/m. Closed contacts:
 /// ½·kn·d²; locked ones add ½·ks·s², sliding ones the elastic part of their shear spring at the
 /// friction limit, ½·(tanφ·fn)²/ks.

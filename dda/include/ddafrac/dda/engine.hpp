@@ -99,10 +99,10 @@ struct Statistics {
   // Contacts that came in deep (after step 1): first detected already deeper than one step's
   // allowed displacement, or whose spring took more than kDeepContactEnergyFraction of the energy
   // balance's scale at detection beyond what its record held the step before (a contact passed
-  // to a deeper line, e.g. a node corner to a copy that sank within one step, design §4.6). The overlap
-  // built up unseen and the spring releases ½·kn·d² at once, energy that no work put in. Mostly
-  // triangles of one body that share only a mesh node; at kn/E >= 1e3 this energy wrecks the run
-  // (stability study).
+  // to a deeper line, e.g. a node corner to a copy that sank within one step, design §4.6). The
+  // overlap built up unseen and the spring releases ½·kn·d² at once, energy that no work put in.
+  // Mostly triangles of one body that share only a mesh node; at kn/E >= 1e3 this energy wrecks
+  // the run (stability study).
   long missed_contacts = 0;
   double deepest_missed = 0.0;  // m
   // Contacts of the first step overlapping by more than one step's allowed displacement: the
