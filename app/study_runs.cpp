@@ -55,10 +55,39 @@ std::vector<std::string> study_overrides(const StudyArguments& args, const json&
   return study["set"].get<std::vector<std::string>>();
 }
 
+/// The kind's cases with the --set values, repeats marked (mark_repeats).
+std::vector<StudyCase> load_cases(const StudyKind& kind, const std::vector<std::string>& overrides) {
+  std::vector<StudyCase> cases = kind.load(overrides);
+  mark_repeats(cases);
+  return cases;
+}
+
+/// The case whose run `c` shows: `c` itself, or the case of `all` it repeats.
+const StudyCase& shown_case(const StudyCase& c, const std::vector<StudyCase>& all) {
+  if (c.repeat_of.empty()) return c;
+  return *std::find_if(all.begin(), all.end(), [&](const StudyCase& o) { return o.run.scene.name == c.repeat_of; });
+}
+
+/// The chosen cases with each repeat replaced by the case it repeats (once): what runs. Says so
+/// for each repeat, so that a user who chose case 8 sees why case 4 runs.
+std::vector<StudyCase> cases_to_run(const std::vector<StudyCase>& chosen, const std::vector<StudyCase>& all) {
+  std::vector<StudyCase> runs;
+  for (const StudyCase& c : chosen) {
+    const StudyCase& shown = shown_case(c, all);
+    if (&shown != &c)
+      fmt::print("{} repeats {}'s scene under another name: it runs once, as {}\n", c.run.scene.name,
+                 shown.run.scene.name, shown.run.scene.name);
+    if (std::none_of(runs.begin(), runs.end(),
+                     [&](const StudyCase& r) { return r.run.scene.name == shown.run.scene.name; }))
+      runs.push_back(shown);
+  }
+  return runs;
+}
+
 /// One line of --status: done, running, failed or to do, from the case's run directory.
-std::string status_line(const StudyCase& study_case, bool study_running, std::size_t name_width,
-                        std::size_t series_width) {
-  CaseRun c = study_case.run;
+std::string status_line(const StudyCase& study_case, const std::vector<StudyCase>& all, bool study_running,
+                        std::size_t name_width, std::size_t series_width) {
+  CaseRun c = shown_case(study_case, all).run;
   const json s = read_summary(c.run_dir);
   decide_start(c);
   const auto reason = !s.is_discarded() && s.contains("exit") ? s["exit"].value("reason", "") : std::string();
@@ -81,8 +110,9 @@ std::string status_line(const StudyCase& study_case, bool study_running, std::si
                         reason == "completed" ? "its scene changed since" : "stopped with no checkpoint");
   }
   constexpr double kMicroseconds = 1e6;
-  return fmt::format("{:<{}} {:<{}} {:>7.0f} / {:<7.0f} {:>9.1f}  {}\n", c.scene.name, name_width, study_case.series,
-                     series_width, t * kMicroseconds, end * kMicroseconds, wall, state);
+  if (!study_case.repeat_of.empty()) state += fmt::format(" ({}'s run)", study_case.repeat_of);
+  return fmt::format("{:<{}} {:<{}} {:>7.0f} / {:<7.0f} {:>9.1f}  {}\n", study_case.run.scene.name, name_width,
+                     study_case.series, series_width, t * kMicroseconds, end * kMicroseconds, wall, state);
 }
 
 /// The study file of the study in `out`; throws CommandFailed naming the option if there is none.
@@ -98,7 +128,8 @@ void print_status(const StudyKind& kind, const StudyArguments& args) {
   const json study = existing_study(kind, out, "--status");
   const long pid = study.is_object() ? study.value("pid", 0L) : 0L;
   const bool running = alive(pid);
-  const std::vector<StudyCase> cases = choose_cases(kind.load(study_overrides(args, study)), args.cases, kind.command);
+  const std::vector<StudyCase> all = load_cases(kind, study_overrides(args, study));
+  const std::vector<StudyCase> cases = choose_cases(all, args.cases, kind.command);
   fmt::print("{} in {}: {}\n", kind.command, out.string(),
              running ? fmt::format("running (process {})", pid) : std::string("not running"));
   constexpr std::size_t kNameWidth = 18, kSeriesWidth = 14;  // at least; wider for longer names
@@ -109,7 +140,7 @@ void print_status(const StudyKind& kind, const StudyArguments& args) {
   }
   fmt::print("{:<{}} {:<{}} {:>17} {:>9}  {}\n", "case", name_width, "series", series_width, "t / end (µs)", "wall (s)",
              "state");
-  for (const StudyCase& c : cases) fmt::print("{}", status_line(c, running, name_width, series_width));
+  for (const StudyCase& c : cases) fmt::print("{}", status_line(c, all, running, name_width, series_width));
 }
 
 /// study.csv and study.md, each written whole.
@@ -143,7 +174,7 @@ std::vector<StudyCase> whole_study(std::vector<StudyCase> all, const std::vector
 void report_study(const StudyKind& kind, const StudyArguments& args) {
   const fs::path out(args.out);
   const std::vector<std::string> overrides = study_overrides(args, existing_study(kind, out, "--report"));
-  write_report(kind, out, kind.load(overrides), overrides);
+  write_report(kind, out, load_cases(kind, overrides), overrides);
 }
 
 void run_study(const StudyKind& kind, const StudyArguments& args) {
@@ -155,8 +186,8 @@ void run_study(const StudyKind& kind, const StudyArguments& args) {
     throw CommandFailed(fmt::format("{}: a study is running in {} (process {}); see --status", kind.command,
                                     out.string(), previous.value("pid", 0L)));
   const std::vector<std::string> overrides = args.resume ? study_overrides(args, previous) : args.overrides;
-  const std::vector<StudyCase> all = kind.load(overrides);
-  std::vector<StudyCase> cases = choose_cases(all, args.cases, kind.command);
+  const std::vector<StudyCase> all = load_cases(kind, overrides);
+  std::vector<StudyCase> cases = cases_to_run(choose_cases(all, args.cases, kind.command), all);
 
   std::vector<CaseRun> runs;
   for (StudyCase& c : cases) {
@@ -214,6 +245,18 @@ std::map<std::string, std::string> stored_study_options(const fs::path& out) {
     options[key] = value.get<std::string>();
   }
   return options;
+}
+
+void mark_repeats(std::vector<StudyCase>& cases) {
+  for (auto c = cases.begin(); c != cases.end(); ++c) {
+    const auto first = std::find_if(cases.begin(), c, [&](const StudyCase& o) {
+      return o.repeat_of.empty() && !o.run.scene.unnamed_text.empty() &&
+             o.run.scene.unnamed_text == c->run.scene.unnamed_text;
+    });
+    if (first == c) continue;
+    c->repeat_of = first->run.scene.name;
+    c->run.run_dir = first->run.run_dir;
+  }
 }
 
 std::vector<StudyCase> choose_cases(std::vector<StudyCase> all, const std::vector<std::string>& names,

@@ -21,6 +21,10 @@ namespace ddafrac::app {
 struct StudyCase {
   std::string series;  // e.g. "impact-theta"
   CaseRun run;
+  /// The earlier case whose scene this one repeats under another name (the source study's cases
+  /// 8 and 12 are case 4): it runs once, as that case, and run.run_dir is that case's. Empty:
+  /// a case with its own run.
+  std::string repeat_of;
 };
 
 struct StudyArguments {
@@ -67,6 +71,10 @@ std::filesystem::path study_file(const std::filesystem::path& out);
 /// The options (StudyKind::options) the study in `out` was started with; empty if there is no
 /// study there or it recorded none.
 std::map<std::string, std::string> stored_study_options(const std::filesystem::path& out);
+
+/// Marks every case whose scene repeats an earlier case's under another name (equal
+/// Scene::unnamed_text): its repeat_of and run directory become the earlier case's.
+void mark_repeats(std::vector<StudyCase>& cases);
 
 /// Only the cases named in `names` (all when empty), in that order; throws CommandFailed
 /// listing the cases when a name is unknown.

@@ -305,7 +305,7 @@ std::vector<StudyCase> load_study(const SensitivityArguments& args, const std::v
   std::vector<CaseRun> runs = load_case_runs(files, overrides, out, "the study's cases");
   std::vector<StudyCase> cases;
   for (std::size_t k = 0; k < runs.size(); ++k)
-    cases.push_back({fmt::format("{}", fmt::join(all[k].families, "+")), std::move(runs[k])});
+    cases.push_back({fmt::format("{}", fmt::join(all[k].families, "+")), std::move(runs[k]), {}});
   return cases;
 }
 

@@ -49,7 +49,7 @@ std::vector<StudyCase> load_study(const std::vector<std::string>& overrides, con
     }
   std::vector<CaseRun> runs = load_case_runs(files, overrides, out, "the study's cases");
   std::vector<StudyCase> all;
-  for (std::size_t k = 0; k < runs.size(); ++k) all.push_back({series[k], std::move(runs[k])});
+  for (std::size_t k = 0; k < runs.size(); ++k) all.push_back({series[k], std::move(runs[k]), {}});
   return all;
 }
 

@@ -51,6 +51,11 @@ struct TableRow {
 /// speed), not a time, so it is printed in s and never as µs of a dynamic run.
 constexpr const char* kPseudoTimeMark = "†";
 
+/// The case's name, and the case whose run it shows if it repeats that case's scene.
+std::string case_cell(const StudyCase& c) {
+  return c.repeat_of.empty() ? c.run.scene.name : fmt::format("{} ({}'s run)", c.run.scene.name, c.repeat_of);
+}
+
 TableRow table_row(const StudyCase& c) {
   const json s = read_summary(c.run.run_dir);
   if (s.is_discarded()) {
@@ -59,7 +64,7 @@ TableRow table_row(const StudyCase& c) {
                                                         "see its run.log)",
                                                         c.run.exit_code)
                                                   : std::string("not run");
-    return {fmt::format("| {} | {} | {} |{}\n", c.run.scene.name, c.series, state, std::string(14, '|'))};
+    return {fmt::format("| {} | {} | {} |{}\n", case_cell(c), c.series, state, std::string(14, '|'))};
   }
   const bool pseudo_time = s.contains("scene") && s["scene"].value("mode", "") == "static";
   // A time in µs (`format`), or a static run's load parameter in s.
@@ -78,7 +83,7 @@ TableRow table_row(const StudyCase& c) {
     if (const auto n = number_at(s, {"dt", kind})) cuts = cuts.value_or(0.0) + *n;
   const std::string reason = s.contains("exit") ? s["exit"].value("reason", "?") : "?";
   const std::string text = fmt::format(
-      "| {} | {} | {} | {} | {} | {} | {} | {} / {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", c.run.scene.name,
+      "| {} | {} | {} | {} | {} | {} | {} | {} / {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", case_cell(c),
       c.series, cell(number_at(s, {"scene", "blocks"}), "{:.0f}"), cell(number_at(s, {"steps"}), "{:.0f}"),
       cell(cuts, "{:.0f}"), cell(number_at(s, {"wall_time", "total"}), "{:.1f}"),
       time_cell(number_at(s, {"simulated_time"}), "{:.0f}"), cell(number_at(s, {"cracks", "tensile"}), "{:.0f}"),

@@ -55,6 +55,13 @@ def series_cases(h, study_dir):
     return out
 
 
+def case_label(case, run_dir):
+    """The case's name, and the run it shows where it repeats another case's scene (its run
+    directory is that case's), e.g. "impact-case08 (= impact-case04)"."""
+    run = os.path.basename(os.path.normpath(run_dir))
+    return case if run == case else f"{case} (= {run})"
+
+
 def run_table(h, run_dir, name):
     """A CSV file of a run as columns, or None if the run has not written it (or no rows yet)."""
     path = os.path.join(run_dir, name)
@@ -73,8 +80,8 @@ def draw_counts(h, series, cases, out_dir, save):
         edges = np.concatenate((h.numbers(intervals, "interval_start")[:1], h.numbers(intervals, "interval_end")))
         width = (edges[1] - edges[0]) * MICROSECONDS
         for column, (kind, key) in enumerate(KINDS):
-            axes[0][column].plot(t, h.numbers(history, key), label=case)
-            axes[1][column].stairs(h.numbers(intervals, kind), edges * MICROSECONDS, label=case)
+            axes[0][column].plot(t, h.numbers(history, key), label=case_label(case, run_dir))
+            axes[1][column].stairs(h.numbers(intervals, kind), edges * MICROSECONDS, label=case_label(case, run_dir))
     if width is None:
         plt.close(figure)
         return
@@ -111,7 +118,7 @@ def draw_patterns(h, series, cases, times, out_dir, save):
             a.set_xticks([])
             a.set_yticks([])
             if column == 0:
-                a.set_ylabel(case)
+                a.set_ylabel(case_label(case, run_dir))
             if row == 0:
                 a.set_title(f"{t * MICROSECONDS:.0f} µs")
             found = nearest_snapshot(snapshots, t)

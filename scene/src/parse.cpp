@@ -19,6 +19,10 @@ namespace ddafrac::scene {
 
 namespace {
 
+/// The scene's top-level keys that name and describe it and change nothing a run computes.
+constexpr const char* kNameKey = "name";
+constexpr const char* kDescriptionKey = "description";
+
 std::string toml_text_of(const toml::table& document) {
   std::ostringstream text;
   text << document;
@@ -360,8 +364,8 @@ Scene parse_document(const toml::table& document, const std::filesystem::path& f
 
   Scene scene;
   scene.source = file;
-  scene.name = top.name_or_file_stem("name", file);
-  scene.description = top.text("description", Need::Optional).value_or("");
+  scene.name = top.name_or_file_stem(kNameKey, file);
+  scene.description = top.text(kDescriptionKey, Need::Optional).value_or("");
   scene.analysis = parse_analysis(top.table("analysis", Need::Required));
   scene.materials = parse_materials(top.table("materials", Need::Required));
   scene.joint_sets = parse_joint_sets(top.table("joints", Need::Required), scene.analysis.penalty);
@@ -412,6 +416,10 @@ Scene parse_scene(const std::string& toml_text, const std::filesystem::path& fil
   Scene scene = parse_document(document, file_name, diagnostics);
   if (!diagnostics.empty()) throw SceneError(diagnostics.take());
   scene.resolved_text = toml_text_of(document);
+  toml::table unnamed = document;
+  unnamed.erase(kNameKey);
+  unnamed.erase(kDescriptionKey);
+  scene.unnamed_text = toml_text_of(unnamed);
   return scene;
 }
 

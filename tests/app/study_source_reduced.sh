@@ -5,6 +5,7 @@
 #   - the resume keeps the finished first case (not run again: its files untouched);
 #   - --status lists it as done, the others as to do, and all as done at the end; --report then
 #     writes study.md with its row filled and the others "not run";
+#   - cases 8 and 12 (case 4's scene) are not run again: study.csv points them at case 4's run;
 #   - every case completed, study.md has a row for every case, study.csv lists them, and it
 #     names the one engine (build commit, as `ddafrac --version` gives it) that ran them all;
 #   - crack counts (total, tensile, shear) never decrease in any history.csv, nor the crack
@@ -28,6 +29,9 @@ strength=1e6       # Pa, tensile strength and cohesion of the virtual joints (th
 set_args=(--set "mesh.blocks=$blocks" --set "analysis.end_time=$end_time" --set "analysis.output_interval=$interval"
           --set "joints.virtual.tensile_strength=$strength" --set "joints.virtual.cohesion=$strength")
 first=flattened-2045  # the first case of the study
+# The run directory a case's numbers come from (study.csv): its own, or that of the case whose
+# scene it repeats (at one block count for all, the three flattened discs are one scene).
+run_of() { echo "$study/$(grep "^$1," "$study/study.csv" | cut -d, -f3)"; }
 
 setsid "$exe" study source --out "$study" --parallel 1 "${set_args[@]}" > "$work/killed.log" 2>&1 &
 group=$!
@@ -60,13 +64,17 @@ grep -q "figures not drawn" "$work/resume.log" && fail "the study's figures were
 cases=$(tail -n +2 "$study/study.csv" | cut -d, -f1)
 cracked=0
 [ "$(echo "$cases" | wc -l)" = 22 ] || fail "study.csv does not list 22 cases"
+for c in impact-case08 impact-case12; do
+  grep -q "^$c,.*,impact-case04," "$study/study.csv" || fail "study.csv does not point $c at impact-case04's run"
+  [ -e "$study/$c" ] && fail "$c ran again in its own directory"
+done
 commit=$("$exe" --version | sed -n 's/.*(commit \(.*\))$/\1/p')
 grep -q "^Engine: the cases run so far were all run by the build of commit \`$commit\`" "$study/study.md" ||
   fail "study.md does not name the engine $commit"
 for c in $cases; do
-  grep -q "^| $c |" "$study/study.md" || fail "study.md has no row for $c"
-  grep -q "^$c .* done$" "$work/status_end.log" || fail "--status does not list $c as done at the end"
-  run="$study/$c"
+  grep -q "^| $c \(([a-z0-9-]*'s run) \)\?|" "$study/study.md" || fail "study.md has no row for $c"
+  grep -q "^$c .* done\( (.*'s run)\)\?$" "$work/status_end.log" || fail "--status does not list $c as done at the end"
+  run=$(run_of "$c")
   check_run "$c" "$run"
   [ "$(tail -n 1 "$run/history.csv" | cut -d, -f"$(head -n 1 "$run/history.csv" | tr , '\n' | grep -n '^cracks_total$' | cut -d: -f1)")" -gt 0 ] &&
     cracked=$((cracked + 1))
@@ -80,7 +88,7 @@ for c in $(echo "$cases" | grep -E '^(flattened|precracked)-'); do
   row=$(grep -m 1 "^| $c | " "$study/analysis.md") || fail "analysis.md has no peak-force row for $c"
   expected=$(python3 -c 'import json,math,sys
 p = json.load(open(sys.argv[1]))["loading"]["peak"]["top_platen"]["peak_abs_force_y"]
-print(f"{0.9899 * 2 * p / (math.pi * 0.1) * 1e-6:.2f}")' "$study/$c/summary.json")
+print(f"{0.9899 * 2 * p / (math.pi * 0.1) * 1e-6:.2f}")' "$(run_of "$c")/summary.json")
   [ "$(echo "$row" | cut -d'|' -f7 | tr -d ' ')" = "$expected" ] ||
     fail "analysis.md: $c's indirect tensile strength is not k·2P/(πD) = $expected MPa: $row"
 done
@@ -90,7 +98,7 @@ for s in flattened precracked; do
 done
 echo "$cracked of 22 cases cracked"
 
-most=$(for c in $cases; do echo "$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["cracks"]["total"])' "$study/$c/summary.json") $c"; done | sort -n | tail -n 1 | cut -d' ' -f2)
+most=$(for c in $(tail -n +2 "$study/study.csv" | cut -d, -f3 | sort -u); do echo "$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["cracks"]["total"])' "$study/$c/summary.json") $c"; done | sort -n | tail -n 1 | cut -d' ' -f2)
 scene=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["scene"]["source"])' "$study/$most/summary.json")
 check_same_on_two_threads "$most" "$study/$most" "$exe" "$work/two_threads" "$scene" "${set_args[@]}"
 

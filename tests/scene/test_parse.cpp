@@ -133,6 +133,21 @@ BOOST_AUTO_TEST_CASE(valid_scene_gives_stated_values_in_si_units) {
   BOOST_TEST(s.gauges[0].position[1] == -0.045);
 }
 
+// A study runs a scene that repeats another under a new name once (the source study's cases 8
+// and 12 are case 4): scenes that differ only in name and description have one unnamed_text, and
+// a changed value, here a gauge's name, makes it differ.
+BOOST_AUTO_TEST_CASE(unnamed_text_tells_a_renamed_scene_from_a_changed_one) {
+  const scene::Scene original = scene::parse_scene(kValid, "ok.toml");
+  const scene::Scene renamed =
+      scene::parse_scene(replaced(kValid, "name = \"t\"", "name = \"u\"\ndescription = \"the same run\""), "u.toml");
+  const scene::Scene changed = scene::parse_scene(replaced(kValid, "name = \"A\"", "name = \"B\""), "ok.toml");
+  BOOST_TEST(renamed.name == "u");
+  BOOST_TEST(renamed.resolved_text != original.resolved_text);
+  BOOST_TEST(renamed.unnamed_text == original.unnamed_text);
+  BOOST_TEST(changed.unnamed_text != original.unnamed_text);
+  BOOST_TEST(original.unnamed_text.find("[analysis]") != std::string::npos);
+}
+
 // --- at least twenty bad scenes, each with its message -----------------------------------
 
 BOOST_AUTO_TEST_CASE(unknown_key_suggests_the_closest) {

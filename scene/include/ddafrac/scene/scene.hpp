@@ -94,6 +94,9 @@ struct Scene {
   /// The whole scene as read: its `base` chain merged and --set applied, printed as TOML. A
   /// run's checkpoint keeps it, and a resume refuses a scene whose files changed since.
   std::string resolved_text;
+  /// resolved_text without the name and description: scenes that differ only in those run
+  /// alike (a study runs such a repeat once).
+  std::string unnamed_text;
   std::vector<Material> materials;
   std::vector<JointSet> joint_sets;
   meshes::Geometry geometry;
