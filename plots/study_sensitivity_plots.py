@@ -251,11 +251,17 @@ def gauge_peaks(h, run):
     return {name: float(sigma1[names == name].max()) for name in dict.fromkeys(gauges["gauge"])}
 
 
+def tick_label(value):
+    """A run's value as a tick: three significant digits below 1 (the study's kn/E = 0.0332, not
+    0.0332384), whole numbers as they are (11137 blocks, not 1.11e+04)."""
+    return f"{value:.3g}" if abs(value) < 1 else f"{value:g}"
+
+
 def log_axis_at(axis, xs):
     """A log x axis ticked at the runs' own values `xs`: the default minor labels of a log axis
     over less than a decade run into one another."""
     axis.set_xscale("log")
-    axis.set_xticks(xs, [f"{v:g}" for v in xs])
+    axis.set_xticks(xs, [tick_label(v) for v in xs])
     axis.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
 
 
