@@ -252,9 +252,9 @@ def gauge_peaks(h, run):
 
 
 def tick_label(value):
-    """A run's value as a tick: three significant digits below 1 (the study's kn/E = 0.0332, not
-    0.0332384), whole numbers as they are (11137 blocks, not 1.11e+04)."""
-    return f"{value:.3g}" if abs(value) < 1 else f"{value:g}"
+    """A run's value as a tick: a table's cell below 1 (the study's kn/E = 0.0332, not 0.0332384),
+    larger values exact (11137 blocks, where a cell would round to 11100)."""
+    return cell(value) if abs(value) < 1 else f"{value:g}"
 
 
 def log_axis_at(axis, xs):
