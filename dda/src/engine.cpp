@@ -87,6 +87,7 @@ Engine::Engine(scene::Scene scene, const meshes::Mesh& mesh, EngineOptions optio
     throw std::invalid_argument("allowed step displacement must be positive (max_displacement_ratio)");
   options_.detection.search_distance = an.search_distance_factor * allowed_;
   options_.detection.skin = an.pair_list_skin_factor * options_.detection.search_distance;
+  options_.solver.tolerance = an.solver_tolerance;
   if (!(an.penalty > 0.0)) throw std::invalid_argument("analysis.penalty must be positive");
   anchor_penalty_ = options_.anchor_penalty_factor * an.penalty;
   const std::size_t n = blocks_.block_count();

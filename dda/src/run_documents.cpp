@@ -167,6 +167,7 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
                 {"open_close_max", an.open_close_max},
                 {"search_distance_factor", an.search_distance_factor},
                 {"pair_list_skin_factor", an.pair_list_skin_factor},
+                {"solver_tolerance", an.solver_tolerance},
                 {"blocks", e.blocks().block_count()},
                 {"virtual_joints", e.blocks().joints.size()}};
   j["threads"] = o.threads;

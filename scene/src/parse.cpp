@@ -99,6 +99,11 @@ Analysis parse_analysis(TableReader t) {
   if (auto n = t.integer("open_close_max", 1, 50, Need::Optional)) a.open_close_max = static_cast<int>(*n);
   if (auto solver = t.choice("solver", {"pcg", "direct"}, Need::Optional))
     a.solver = *solver == "direct" ? Solver::Direct : Solver::Pcg;
+  if (auto tol = t.number("solver_tolerance",
+                          NumberRule{kSmallestSolverTolerance, kLargestSolverTolerance, false, false,
+                                     "PCG's relative residual |b - K·x| / |b|"},
+                          Need::Optional))
+    a.solver_tolerance = *tol;
   if (auto f = t.number("search_distance_factor",
                         NumberRule::positive("contact search distance / allowed step displacement"), Need::Optional))
     a.search_distance_factor = *f;

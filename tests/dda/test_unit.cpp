@@ -502,12 +502,13 @@ BOOST_AUTO_TEST_CASE(an_overlap_at_the_start_is_counted) {
 // on a well-conditioned dynamic system gives ~1e-10 relative solution error).
 BOOST_AUTO_TEST_CASE(pcg_matches_direct_solver) {
   const meshes::Mesh m = make_ring_disc_mesh(0.1, 600);
-  EngineOptions pcg;
-  pcg.solver.tolerance = 1e-12;
-  EngineOptions direct = pcg;
+  scene::Scene s = make_impact_scene(3.5, 1e-3);
+  s.analysis.solver_tolerance = 1e-12;
+  EngineOptions direct;
   direct.solver.kind = SolverKind::Direct;
-  Engine a(make_impact_scene(3.5, 1e-3), m, pcg);
-  Engine b(make_impact_scene(3.5, 1e-3), m, direct);
+  Engine a(s, m);
+  Engine b(s, m, direct);
+  BOOST_TEST(a.options().solver.tolerance == s.analysis.solver_tolerance);  // the scene's key reaches PCG
   a.step();
   b.step();
   double diff = 0.0, norm = 0.0;

@@ -195,6 +195,18 @@ BOOST_AUTO_TEST_CASE(contact_search_factors_are_read_when_given) {
   BOOST_TEST(s.analysis.pair_list_skin_factor == 0.0);
 }
 
+BOOST_AUTO_TEST_CASE(solver_tolerance_defaults_to_the_documented_value_and_is_read_when_given) {
+  BOOST_TEST(scene::parse_scene(kValid, "ok.toml").analysis.solver_tolerance == scene::kDefaultSolverTolerance);
+  const scene::Scene s = scene::parse_scene(
+      replaced(kValid, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nsolver_tolerance = 1e-13"), "ok.toml");
+  BOOST_TEST(s.analysis.solver_tolerance == 1e-13);
+}
+
+BOOST_AUTO_TEST_CASE(a_solver_tolerance_round_off_cannot_reach_is_refused) {
+  expect_problem(replaced(kValid, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nsolver_tolerance = 1e-16"),
+                 "analysis.solver_tolerance", 11, "got 1e-16");
+}
+
 BOOST_AUTO_TEST_CASE(zero_search_distance_is_refused) {
   expect_problem(replaced(kValid, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nsearch_distance_factor = 0"),
                  "analysis.search_distance_factor", 11, "> 0");

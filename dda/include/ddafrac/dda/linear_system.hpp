@@ -10,6 +10,7 @@
 
 #include "ddafrac/dda/contact.hpp"
 #include "ddafrac/dda/types.hpp"
+#include "ddafrac/scene/defaults.hpp"
 
 namespace ddafrac::dda {
 
@@ -47,7 +48,7 @@ struct SolveReport {
 
 struct SolverSettings {
   SolverKind kind = SolverKind::Pcg;
-  double tolerance = 1e-10;  // relative residual of PCG
+  double tolerance = scene::kDefaultSolverTolerance;  // PCG's relative residual; an Engine takes its scene's
   int max_iterations = 5000;
 };
 

@@ -18,4 +18,12 @@ inline constexpr double kDefaultSearchDistanceFactor = 2.5;
 /// analysis.pair_list_skin_factor: skin of the contact pair list / search distance.
 inline constexpr double kDefaultPairListSkinFactor = 1.0;
 
+/// analysis.solver_tolerance: PCG stops once its residual |b − K·x| is this fraction of |b|.
+inline constexpr double kDefaultSolverTolerance = 1e-10;
+
+/// The range analysis.solver_tolerance may take: below the smallest, round-off keeps PCG from
+/// ever getting there (every step would fail); above the largest, a solve is not a solution.
+inline constexpr double kSmallestSolverTolerance = 1e-14;
+inline constexpr double kLargestSolverTolerance = 1e-3;
+
 }  // namespace ddafrac::scene

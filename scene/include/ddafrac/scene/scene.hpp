@@ -61,6 +61,7 @@ struct Analysis {
   Vec2 gravity{0.0, 0.0};               // m/s^2
   int open_close_max = 6;               // open-close iterations before dt is cut
   Solver solver = Solver::Pcg;
+  double solver_tolerance = kDefaultSolverTolerance;  // PCG's relative residual |b - K·x| / |b| at which it stops
   double search_distance_factor = kDefaultSearchDistanceFactor;  // contact search distance / allowed step displacement
   double pair_list_skin_factor = kDefaultPairListSkinFactor;     // skin of the contact pair list / search distance
 };
