@@ -100,8 +100,8 @@ Analysis parse_analysis(TableReader t) {
   if (auto solver = t.choice("solver", {"pcg", "direct"}, Need::Optional))
     a.solver = *solver == "direct" ? Solver::Direct : Solver::Pcg;
   if (auto tol = t.number("solver_tolerance",
-                          NumberRule{kSmallestSolverTolerance, kLargestSolverTolerance, false, false,
-                                     "PCG's relative residual |b - K·x| / |b|"},
+                          NumberRule::closed(kSmallestSolverTolerance, kLargestSolverTolerance,
+                                             "PCG's relative residual |b - K·x| / |b|"),
                           Need::Optional))
     a.solver_tolerance = *tol;
   if (auto f = t.number("search_distance_factor",

@@ -56,6 +56,9 @@ struct NumberRule {
   static NumberRule half_open(double lo, double hi, std::string unit = "") {
     return {lo, hi, false, true, std::move(unit)};
   }
+  static NumberRule closed(double lo, double hi, std::string unit = "") {
+    return {lo, hi, false, false, std::move(unit)};
+  }
 };
 
 /// Why `name` cannot name an output, or "" if it can. Scene, body and gauge names become folder
