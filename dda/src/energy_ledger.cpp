@@ -5,6 +5,15 @@
 
 namespace ddafrac::dda {
 
+Energies& Energies::operator+=(const Energies& o) {
+  kinetic += o.kinetic;
+  kinetic_free += o.kinetic_free;
+  strain += o.strain;
+  contact += o.contact;
+  support += o.support;
+  return *this;
+}
+
 StepEnergy& StepEnergy::operator+=(const StepEnergy& o) {
   work_gravity += o.work_gravity;
   work_loads += o.work_loads;
@@ -12,6 +21,14 @@ StepEnergy& StepEnergy::operator+=(const StepEnergy& o) {
   friction += o.friction;
   joint_breaks += o.joint_breaks;
   numerical += o.numerical;
+  return *this;
+}
+
+ResidualSources& ResidualSources::operator+=(const ResidualSources& o) {
+  contacts_kept += o.contacts_kept;
+  contacts_new += o.contacts_new;
+  blocks += o.blocks;
+  supports += o.supports;
   return *this;
 }
 
@@ -47,17 +64,31 @@ StepEnergy released_energy(const Contact& c, bool bonded_now) {
   return e;
 }
 
+namespace {
+/// An ordinary contact that closes from a gap d0 > 0 only pushes from the moment it touches: the
+/// linear system's start energy ½·kn·d0² of its spring is fictitious.
+bool closes_from_a_gap(const Contact& c, bool bonded_now) {
+  const bool carries_tension = bonded_now || (c.cohesive && !c.cohesion_lost);
+  return !carries_tension && c.d0 > 0.0;
+}
+}  // namespace
+
+double contact_start_mismatch(const Contact& c, bool bonded_now) {
+  if (c.trial == ContactState::Open) return 0.0;
+  double mismatch = (closes_from_a_gap(c, bonded_now) ? 0.0 : spring_energy(c.kn, c.d0)) - c.stored_normal;
+  if (c.trial == ContactState::Locked) mismatch += spring_energy(c.ks, c.s0) - c.stored_shear;
+  return mismatch;
+}
+
 StepEnergy contact_step_energy(const Contact& c, bool bonded_now) {
   if (c.trial == ContactState::Open) return released_energy(c, bonded_now);
   StepEnergy e;
   const bool broke = c.was_bonded && !bonded_now;
-  // Normal spring along the linearised step: ½·kn·Δd². An ordinary contact that closes from a
-  // gap d0 > 0 only pushes from the moment it touches, so the spring's fictitious start energy
-  // ½·kn·d0² is not the scheme's to dissipate.
+  // Normal spring along the linearised step: ½·kn·Δd². The fictitious start energy of a contact
+  // that closes from a gap is not the scheme's to dissipate.
   const double dd = c.d_iter - c.d0;
   e.numerical += 0.5 * c.kn * dd * dd;
-  const bool carries_tension = bonded_now || (c.cohesive && !c.cohesion_lost);
-  if (!carries_tension && c.d0 > 0.0) e.numerical -= 0.5 * c.kn * c.d0 * c.d0;
+  if (closes_from_a_gap(c, bonded_now)) e.numerical -= spring_energy(c.kn, c.d0);
   if (c.trial == ContactState::Locked) {
     const double ds = c.s_iter - c.s0;
     e.numerical += 0.5 * c.ks * ds * ds;

@@ -20,10 +20,12 @@ using detail::chunked_sum;
 /// failed, and whether any slides.
 struct ContactCommit {
   StepEnergy energy;
+  ResidualSources residual;
   long cohesion_lost = 0;
   bool sliding = false;
   ContactCommit& operator+=(const ContactCommit& o) {
     energy += o.energy;
+    residual += o.residual;
     cohesion_lost += o.cohesion_lost;
     sliding = sliding || o.sliding;
     return *this;
@@ -158,6 +160,7 @@ void Engine::detect() {
     // changes only by the linearisation's error.
     const double overlap = std::max(-c.d0, 0.0);
     const bool new_line = !p || p->vertex != c.vertex || p->edge0 != c.edge0;
+    c.same_line = !new_line;
     const double taken = spring_energy(c.kn, overlap) - (p ? p->stored_normal : 0.0);  // J/m
     if (!first && ((!p && overlap > allowed_) || (new_line && taken > deep_energy))) {
       ++missed;
@@ -208,7 +211,7 @@ void Engine::reset_trials() {
   }
 }
 
-void Engine::accept(double dt) {
+Energies Engine::accept(double dt) {
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
   const auto nc = static_cast<std::int64_t>(set_.contacts.size());
   ledger_.total += block_step_energy(dt);
@@ -217,7 +220,9 @@ void Engine::accept(double dt) {
   const ContactCommit committed = chunked_sum<ContactCommit>(nc, [&](std::int64_t k) {
     Contact& c = set_.contacts[k];
     ContactCommit one;
-    one.energy = contact_step_energy(c, c.bonded(blocks_.joints));
+    const bool bonded = c.bonded(blocks_.joints);
+    one.energy = contact_step_energy(c, bonded);
+    (c.same_line ? one.residual.contacts_kept : one.residual.contacts_new) += contact_start_mismatch(c, bonded);
     one.cohesion_lost = c.cohesion_lost ? 1 : 0;
     commit_contact(c);
     const ContactEnergy stored = contact_energy(c);
@@ -228,11 +233,16 @@ void Engine::accept(double dt) {
     return one;
   });
   ledger_.total += committed.energy;
+  ledger_.residual_sources += committed.residual;
   if (committed.sliding) active_.friction = true;
   stats_.cohesion_failures += committed.cohesion_lost;
   const bool dynamic = active_.dynamic;
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
+  const double t1 = time_ + dt;
+  // Each term moves its own block and returns what the block and its anchors store at the end
+  // of the linearised step (on the geometry it started from); record_step sets that against the
+  // same energies on the moved geometry (ResidualSources).
+  const Energies linearised_end = chunked_sum<Energies>(n, [&](std::int64_t i) {
+    Energies end;
     const Vec6& d = d_[i];
     const PolygonIntegrals& g = blocks_.geometry[i];
     for (Index v = blocks_.begin(i); v < blocks_.end(i); ++v)
@@ -243,6 +253,8 @@ void Engine::accept(double dt) {
     }
     for (Index a = blocks_.anchor_offsets[i]; a < blocks_.anchor_offsets[i + 1]; ++a) {
       Anchor& p = blocks_.anchors[static_cast<std::size_t>(a)];
+      const Eigen::Vector2d linear = Eigen::Vector2d(p.x, p.y) + displacement_matrix(g.cx, g.cy, p.x, p.y) * d;
+      end.support += 0.5 * anchor_penalty_ * anchor_stretch(p, linear.x(), linear.y(), t1).squaredNorm();
       displace_point(g.cx, g.cy, d, p.x, p.y);
     }
     const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
@@ -253,8 +265,12 @@ void Engine::accept(double dt) {
       blocks_.velocity[i] = 2.0 / dt * d - blocks_.velocity[i];
     else
       blocks_.velocity[i].setZero();
-  }
+    end.strain = block_strain_energy(i);
+    end.kinetic = block_kinetic_energy(i);
+    return end;
+  });
   update_block_geometry(blocks_);
+  return linearised_end;
 }
 
 std::vector<Engine::BodyLoad> Engine::body_loads() const {
@@ -338,7 +354,7 @@ double Engine::largest_step_displacement(Index& worst) const {
   return dmax;
 }
 
-void Engine::record_step(StepReport& rep) {
+void Engine::record_step(StepReport& rep, const Energies& linearised_end) {
   ++stats_.steps;
   stats_.dt_min = stats_.steps == 1 ? rep.dt : std::min(stats_.dt_min, rep.dt);
   stats_.dt_max = std::max(stats_.dt_max, rep.dt);
@@ -366,6 +382,9 @@ void Engine::record_step(StepReport& rep) {
     rep.energy = energies();
   }
   ledger_.stored = rep.energy;
+  ledger_.residual_sources.blocks +=
+      (rep.energy.strain + rep.energy.kinetic) - (linearised_end.strain + linearised_end.kinetic);
+  ledger_.residual_sources.supports += rep.energy.support - linearised_end.support;
   ledger_.largest_balance_error = std::max(ledger_.largest_balance_error, std::abs(ledger_.balance_error()));
   rep.ledger = ledger_;
 }
@@ -382,6 +401,7 @@ StepReport Engine::step(double max_dt) {
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
   const BlockVector d_prev = d_;
   int cuts = 0;
+  Energies linearised_end;
   // Solve, judge and check the step; cut dt and start again until the step is acceptable.
   for (;;) {
     const double dt = std::min(dt_, max_dt);
@@ -425,7 +445,7 @@ StepReport Engine::step(double max_dt) {
     }
     {
       Timer t(stats_.times.update);
-      accept(dt);
+      linearised_end = accept(dt);
     }
     time_ += dt;
     // Fracture check on the converged, accepted step. Breaks take effect from the next step
@@ -448,7 +468,7 @@ StepReport Engine::step(double max_dt) {
     rep.max_displacement = dmax;
     break;
   }
-  record_step(rep);
+  record_step(rep, linearised_end);
   return rep;
 }
 

@@ -41,39 +41,42 @@ StepEnergy Engine::block_step_energy(double dt) const {
     for (Index a = blocks_.anchor_offsets[i]; a < blocks_.anchor_offsets[i + 1]; ++a) {
       const Anchor& p = blocks_.anchors[static_cast<std::size_t>(a)];
       e.numerical += 0.5 * anchor_penalty_ * (displacement_matrix(g.cx, g.cy, p.x, p.y) * d).squaredNorm();
-      const Eigen::Vector2d r0(p.x - p.x_start - p.vx * t0, p.y - p.y_start - p.vy * t0);
-      const Eigen::Vector2d r1(p.x - p.x_start - p.vx * t1, p.y - p.y_start - p.vy * t1);
+      const Eigen::Vector2d r0 = anchor_stretch(p, p.x, p.y, t0), r1 = anchor_stretch(p, p.x, p.y, t1);
       e.work_supports += 0.5 * anchor_penalty_ * (r1.squaredNorm() - r0.squaredNorm());
     }
     return e;
   });
 }
 
+double Engine::block_kinetic_energy(Index i) const {
+  const Vec6& v = blocks_.velocity[i];
+  const PolygonIntegrals& g = blocks_.geometry[i];
+  return 0.5 * (blocks_.mass[i] / g.area) * v.dot(mass_integral(g) * v);
+}
+
+double Engine::block_strain_energy(Index i) const {
+  const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
+  const Vec3& s = blocks_.stress[i];
+  return 0.5 * blocks_.geometry[i].area * s.dot(mat.compliance * s);
+}
+
+Eigen::Vector2d Engine::anchor_stretch(const Anchor& p, double x, double y, double t) {
+  return {x - p.x_start - p.vx * t, y - p.y_start - p.vy * t};
+}
+
 Energies Engine::energies() const {
   Energies e;
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
-  e.kinetic = chunked_sum(n, [&](std::int64_t i) {
-    const Vec6& v = blocks_.velocity[i];
-    const PolygonIntegrals& g = blocks_.geometry[i];
-    return 0.5 * (blocks_.mass[i] / g.area) * v.dot(mass_integral(g) * v);
-  });
+  e.kinetic = chunked_sum(n, [&](std::int64_t i) { return block_kinetic_energy(i); });
   e.kinetic_free = chunked_sum(n, [&](std::int64_t i) {
-    if (blocks_.anchor_offsets[i] != blocks_.anchor_offsets[i + 1]) return 0.0;
-    const Vec6& v = blocks_.velocity[i];
-    const PolygonIntegrals& g = blocks_.geometry[i];
-    return 0.5 * (blocks_.mass[i] / g.area) * v.dot(mass_integral(g) * v);
+    return blocks_.anchor_offsets[i] != blocks_.anchor_offsets[i + 1] ? 0.0 : block_kinetic_energy(i);
   });
-  e.strain = chunked_sum(n, [&](std::int64_t i) {
-    const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
-    const Vec3& s = blocks_.stress[i];
-    return 0.5 * blocks_.geometry[i].area * s.dot(mat.compliance * s);
-  });
+  e.strain = chunked_sum(n, [&](std::int64_t i) { return block_strain_energy(i); });
   e.contact = chunked_sum(static_cast<std::int64_t>(set_.contacts.size()),
                           [&](std::int64_t k) { return contact_energy(set_.contacts[k]).total(); });
   e.support = chunked_sum(static_cast<std::int64_t>(blocks_.anchors.size()), [&](std::int64_t a) {
     const Anchor& p = blocks_.anchors[static_cast<std::size_t>(a)];
-    const Eigen::Vector2d r(p.x - p.x_start - p.vx * time_, p.y - p.y_start - p.vy * time_);
-    return 0.5 * anchor_penalty_ * r.squaredNorm();
+    return 0.5 * anchor_penalty_ * anchor_stretch(p, p.x, p.y, time_).squaredNorm();
   });
   return e;
 }

@@ -59,7 +59,7 @@ void serialize(Archive& a, Contact& c, unsigned) {
   a& c.cohesive& c.cohesive_length& c.stored_normal& c.stored_shear& c.was_bonded;
   a& c.kn& c.ks& c.tan_phi& c.cohesion& c.tensile_strength;
   a& c.d0& c.s0& c.edge_length;
-  a& c.trial& c.fn_iter& c.friction_force& c.d_iter& c.s_iter& c.cohesion_lost& c.carried;
+  a& c.trial& c.fn_iter& c.friction_force& c.d_iter& c.s_iter& c.cohesion_lost& c.carried& c.same_line;
 }
 
 template <class Archive>
@@ -106,8 +106,13 @@ void serialize(Archive& a, StepEnergy& e, unsigned) {
 }
 
 template <class Archive>
+void serialize(Archive& a, ResidualSources& r, unsigned) {
+  a& r.contacts_kept& r.contacts_new& r.blocks& r.supports;
+}
+
+template <class Archive>
 void serialize(Archive& a, EnergyLedger& l, unsigned) {
-  a& l.initial& l.stored& l.total& l.largest_balance_error;
+  a& l.initial& l.stored& l.total& l.residual_sources& l.largest_balance_error;
 }
 
 template <class Archive>

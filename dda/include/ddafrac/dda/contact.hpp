@@ -59,6 +59,10 @@ struct Contact {
   double d_iter = 0.0, s_iter = 0.0;        // gap and shear of the latest solve, m
   bool cohesion_lost = false;               // a cohesive contact failed in this step's iterations
   bool carried = false;                     // detection found it in the previous step's list too
+  // It carries the state of the previous step's contact of the same vertex and reference edge
+  // (not new, not a corner passed to another line): its spring's energy at the step's start
+  // differs from what was booked only by the geometry's re-measure (ResidualSources).
+  bool same_line = false;
 
   bool bonded(const std::vector<Joint>& joints) const {
     return joint >= 0 && !joints[static_cast<std::size_t>(joint)].broken;

@@ -31,6 +31,7 @@ struct Energies {
   double contact = 0.0;       // contact springs (ContactEnergy)
   double support = 0.0;       // anchor springs of fixed and prescribed points, ½·p·|x − target|²
   double stored() const { return kinetic + strain + contact + support; }
+  Energies& operator+=(const Energies& o);
 };
 
 /// Energy of a spring of stiffness k (N/m per m) stretched or compressed by x (m): ½·k·x², J/m.
@@ -56,11 +57,25 @@ struct StepEnergy {
   StepEnergy& operator+=(const StepEnergy& o);
 };
 
+/// Where the residual comes from, J/m (cumulative in EnergyLedger). The step's identity holds on
+/// the linearised step; between the end of one step (booked on it) and the start of the next
+/// (measured on the moved geometry) springs and blocks gain or lose energy that no load put in and
+/// no term booked. The four sums add up to residual() to round-off.
+struct ResidualSources {
+  double contacts_kept = 0.0;  // closed contacts on the line they had: gap and shear re-measured
+  double contacts_new = 0.0;   // contacts new or on a new line that close: their start energy
+  double blocks = 0.0;         // strain and kinetic energy on the moved areas and mass matrices
+  double supports = 0.0;       // anchor springs at the anchor points moved exactly, not by T·D
+  double total() const { return contacts_kept + contacts_new + blocks + supports; }
+  ResidualSources& operator+=(const ResidualSources& o);
+};
+
 /// Cumulative ledger: initial + work = stored + dissipated, up to the balance error.
 struct EnergyLedger {
   double initial = 0.0;  // stored at t = 0
   Energies stored;       // now
   StepEnergy total;      // cumulative since t = 0
+  ResidualSources residual_sources;  // cumulative since t = 0: residual() split by where it arose
   double work() const { return total.work_gravity + total.work_loads + total.work_supports; }
   double dissipated() const { return total.friction + total.joint_breaks + total.numerical; }
   /// (stored + dissipated) − (initial + work), J/m: positive = energy created.
@@ -84,6 +99,13 @@ constexpr double kDefaultEnergyBalanceTolerance = 0.01;
 /// gives up what it stored: to joint_breaks if it was an intact virtual joint at the previous
 /// step and is broken now, else to numerical.
 StepEnergy contact_step_energy(const Contact& c, bool bonded_now);
+
+/// What a contact closed at the end of the step stored at its start on the moved geometry (½·kn·d0²,
+/// and ½·ks·s0² if it ends locked; nothing for an ordinary contact that closes from a gap) beyond
+/// what it was booked with at the end of the previous step, J/m: its share of the residual (0 for a
+/// contact that ends open, whose booked energy is released). A sliding contact's shear spring
+/// is booked with its friction and adds nothing.
+double contact_start_mismatch(const Contact& c, bool bonded_now);
 
 /// What a contact that opens, or vanishes from the contact list, gives up: the energy it stored
 /// at the end of the previous step, to joint_breaks if it was an intact virtual joint then and is

@@ -209,11 +209,20 @@ class Engine {
   OpenClose iterate_open_close(StepReport& rep);
   /// The largest vertex displacement of the step's solution, m, and the block it belongs to.
   double largest_step_displacement(Index& worst) const;
-  /// Statistics, contact counts and the energy ledger of an accepted step.
-  void record_step(StepReport& rep);
+  /// Statistics, contact counts and the energy ledger of an accepted step; `linearised_end` is
+  /// what accept() returned.
+  void record_step(StepReport& rep, const Energies& linearised_end);
   void reset_trials();
   StepEnergy block_step_energy(double dt) const;
-  void accept(double dt);
+  /// ½·Vᵀ·M·V and ½·A·σᵀ·C·σ of block i on its current geometry, J/m.
+  double block_kinetic_energy(Index i) const;
+  double block_strain_energy(Index i) const;
+  /// Stretch of anchor p's spring with its material point at (x, y) and its target at time t, m.
+  static Eigen::Vector2d anchor_stretch(const Anchor& p, double x, double y, double t);
+  /// Books the step's energy, commits the contacts and moves the blocks. Returns the strain,
+  /// kinetic and support energies at the end of the linearised step, on the geometry the step
+  /// started from (record_step books their difference from the moved geometry's as residual).
+  Energies accept(double dt);
   std::size_t fracture_check();
   [[noreturn]] void trouble(const std::string& what) const;
   std::string describe_block(Index b) const;
