@@ -26,6 +26,7 @@ StepEnergy& StepEnergy::operator+=(const StepEnergy& o) {
 
 ResidualSources& ResidualSources::operator+=(const ResidualSources& o) {
   contacts_kept += o.contacts_kept;
+  contacts_reclosed += o.contacts_reclosed;
   contacts_new += o.contacts_new;
   blocks += o.blocks;
   supports += o.supports;

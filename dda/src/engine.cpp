@@ -222,7 +222,10 @@ Energies Engine::accept(double dt) {
     ContactCommit one;
     const bool bonded = c.bonded(blocks_.joints);
     one.energy = contact_step_energy(c, bonded);
-    (c.same_line ? one.residual.contacts_kept : one.residual.contacts_new) += contact_start_mismatch(c, bonded);
+    double& source = !c.same_line                    ? one.residual.contacts_new
+                     : c.state == ContactState::Open ? one.residual.contacts_reclosed
+                                                     : one.residual.contacts_kept;
+    source += contact_start_mismatch(c, bonded);
     one.cohesion_lost = c.cohesion_lost ? 1 : 0;
     commit_contact(c);
     const ContactEnergy stored = contact_energy(c);

@@ -107,7 +107,7 @@ void serialize(Archive& a, StepEnergy& e, unsigned) {
 
 template <class Archive>
 void serialize(Archive& a, ResidualSources& r, unsigned) {
-  a& r.contacts_kept& r.contacts_new& r.blocks& r.supports;
+  a& r.contacts_kept& r.contacts_reclosed& r.contacts_new& r.blocks& r.supports;
 }
 
 template <class Archive>

@@ -39,9 +39,10 @@ inline void check_never_gains_energy(const std::filesystem::path& scene_path) {
                      << " J/m, friction " << l.total.friction << ", breaks " << l.total.joint_breaks << ", numerical "
                      << l.total.numerical << ", largest balance error " << l.largest_balance_error << ", cracks "
                      << e.crack_counts().total << ", residual " << l.residual() << " J/m (contacts kept "
-                     << l.residual_sources.contacts_kept << ", new " << l.residual_sources.contacts_new << ", blocks "
-                     << l.residual_sources.blocks << ", supports " << l.residual_sources.supports
-                     << "), largest residual not in its sources " << largest_unattributed << " of the scale");
+                     << l.residual_sources.contacts_kept << ", reclosed " << l.residual_sources.contacts_reclosed
+                     << ", new " << l.residual_sources.contacts_new << ", blocks " << l.residual_sources.blocks
+                     << ", supports " << l.residual_sources.supports << "), largest residual not in its sources "
+                     << largest_unattributed << " of the scale");
   BOOST_TEST(largest_gain <= 0.005 * l.initial);
   // Round-off of two sums of per-step terms: 2e-9 of the scale after 40 000 steps of case 4 at
   // kn = 100·E; a source left out shows at the size of the residual itself (1e-4 of the scale

@@ -410,8 +410,9 @@ BOOST_AUTO_TEST_CASE(a_tip_driven_into_a_corner_is_held_as_soon_as_it_is_inside)
                                        << e.allowed_displacement() << "), stored " << l.stored.stored() << " of "
                                        << l.initial << " J/m, largest balance error " << l.largest_balance_error
                                        << ", missed " << e.statistics().missed_contacts << "; residual " << l.residual()
-                                       << " J/m: kept " << rs.contacts_kept << ", new " << rs.contacts_new
-                                       << ", blocks " << rs.blocks << ", supports " << rs.supports);
+                                       << " J/m: kept " << rs.contacts_kept << ", reclosed " << rs.contacts_reclosed
+                                       << ", new " << rs.contacts_new << ", blocks " << rs.blocks << ", supports "
+                                       << rs.supports);
     BOOST_TEST(deepest <= e.allowed_displacement());
     BOOST_TEST(e.statistics().deepest_missed <= e.allowed_displacement());
     BOOST_TEST(l.largest_balance_error <= 0.01);

@@ -60,13 +60,18 @@ struct StepEnergy {
 /// Where the residual comes from, J/m (cumulative in EnergyLedger). The step's identity holds on
 /// the linearised step; between the end of one step (booked on it) and the start of the next
 /// (measured on the moved geometry) springs and blocks gain or lose energy that no load put in and
-/// no term booked. The four sums add up to residual() to round-off.
+/// no term booked. The five sums add up to residual() to round-off.
 struct ResidualSources {
-  double contacts_kept = 0.0;  // closed contacts on the line they had: gap and shear re-measured
-  double contacts_new = 0.0;   // contacts new or on a new line that close: their start energy
-  double blocks = 0.0;         // strain and kinetic energy on the moved areas and mass matrices
-  double supports = 0.0;       // anchor springs at the anchor points moved exactly, not by T·D
-  double total() const { return contacts_kept + contacts_new + blocks + supports; }
+  double contacts_kept = 0.0;  // contacts closed at both ends of the step, on the line they had:
+                               // gap and shear re-measured on the moved geometry
+  // Contacts on the line they had, open at the step's start and closed at its end: the overlap
+  // that built up while the open-close band (EngineOptions::state_tolerance) kept them open, with
+  // no spring, ½·kn·d0² each.
+  double contacts_reclosed = 0.0;
+  double contacts_new = 0.0;  // contacts new or on a new line that close: their start energy
+  double blocks = 0.0;        // strain and kinetic energy on the moved areas and mass matrices
+  double supports = 0.0;      // anchor springs at the anchor points moved exactly, not by T·D
+  double total() const { return contacts_kept + contacts_reclosed + contacts_new + blocks + supports; }
   ResidualSources& operator+=(const ResidualSources& o);
 };
 
