@@ -784,6 +784,7 @@ const Contact* carry_contact_state(const std::vector<Contact>& previous, const C
   c.cohesive = p->cohesive;
   c.cohesive_length = p->cohesive_length;
   c.slide_sign = p->slide_sign;
+  c.rest_gap = p->rest_gap;
   c.stored_normal = p->stored_normal;
   c.stored_shear = p->stored_shear;
   c.was_bonded = p->was_bonded;

@@ -97,12 +97,12 @@ ContactCoefficients contact_coefficients(const Contact& c) {
     case ContactState::Locked:
       k.kn_eff = c.kn;
       k.ks_eff = c.ks;
-      k.fn_rhs = -c.kn * c.d0;
+      k.fn_rhs = -c.kn * (c.d0 - c.rest_gap);
       k.fs_rhs = -c.ks * c.s0;
       break;
     case ContactState::Sliding:
       k.kn_eff = c.kn;
-      k.fn_rhs = -c.kn * c.d0;
+      k.fn_rhs = -c.kn * (c.d0 - c.rest_gap);
       k.fs_rhs = -c.slide_sign * c.tan_phi * std::max(c.fn_iter, 0.0);
       break;
   }
@@ -114,14 +114,15 @@ namespace {
 /// Open or closed with Mohr-Coulomb friction (no cohesion): the state of an ordinary contact
 /// with gap d and shear s; fn receives its normal force (compression positive).
 ContactState judge_frictional(Contact& c, double d, double s, double tol, double& fn) {
-  // A closed contact whose spring would pull (d > 0) opens: an ordinary contact carries no
-  // tension. The hysteresis band sits on the closing side, where it costs no energy: an open
-  // contact closes only once it overlaps by more than tol (and then stores ½·kn·tol² at most).
-  if (d > (c.trial == ContactState::Open ? -tol : 0.0)) {
+  // A closed contact whose spring would pull (d > rest gap) opens: an ordinary contact carries
+  // no tension. The hysteresis band sits on the closing side: an open contact closes only once
+  // it overlaps by more than tol, and its spring pushes from the overlap it started the step
+  // with (Contact::rest_gap), so the band adds no energy.
+  if (d > (c.trial == ContactState::Open ? -tol : c.rest_gap)) {
     fn = 0.0;
     return ContactState::Open;
   }
-  fn = std::max(0.0, -c.kn * d);
+  fn = std::max(0.0, -c.kn * (d - c.rest_gap));
   // Elastic predictor (return mapping) on the shear spring measured from the reference
   // point: the contact slides while the spring would carry more than the friction limit in the
   // sliding direction. Judging a sliding contact by the direction of its step increment
@@ -153,7 +154,7 @@ bool judge_contact(Contact& c, const ContactLinearisation& lin, const Vec6& dv, 
   const double d = c.d0 + lin.e.dot(dv) + lin.g.dot(de);
   const double s = c.s0 + lin.es.dot(dv) + lin.gs.dot(de);
   ContactState next = ContactState::Locked;
-  double fn = -c.kn * d;
+  double fn = -c.kn * (d - c.rest_gap);
   if (!bonded) {
     // A cohesive joint that fails stays failed for the rest of the step's iterations (and for
     // good once the step is accepted): the iteration then cannot cycle on its strength.

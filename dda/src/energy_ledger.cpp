@@ -51,7 +51,7 @@ double sliding_shear_energy(double friction, double ks) { return ks > 0.0 ? 0.5 
 ContactEnergy contact_energy(const Contact& c) {
   ContactEnergy e;
   if (c.trial == ContactState::Open) return e;
-  e.normal = spring_energy(c.kn, c.d_iter);
+  e.normal = spring_energy(c.kn, c.d_iter - c.rest_gap);
   if (c.trial == ContactState::Locked)
     e.shear = spring_energy(c.ks, c.s_iter);
   else
@@ -70,13 +70,13 @@ namespace {
 /// linear system's start energy ½·kn·d0² of its spring is fictitious.
 bool closes_from_a_gap(const Contact& c, bool bonded_now) {
   const bool carries_tension = bonded_now || (c.cohesive && !c.cohesion_lost);
-  return !carries_tension && c.d0 > 0.0;
+  return !carries_tension && c.d0 > c.rest_gap;
 }
 }  // namespace
 
 double contact_start_mismatch(const Contact& c, bool bonded_now) {
   if (c.trial == ContactState::Open) return 0.0;
-  double mismatch = (closes_from_a_gap(c, bonded_now) ? 0.0 : spring_energy(c.kn, c.d0)) - c.stored_normal;
+  double mismatch = (closes_from_a_gap(c, bonded_now) ? 0.0 : spring_energy(c.kn, c.d0 - c.rest_gap)) - c.stored_normal;
   if (c.trial == ContactState::Locked) mismatch += spring_energy(c.ks, c.s0) - c.stored_shear;
   return mismatch;
 }
@@ -89,7 +89,7 @@ StepEnergy contact_step_energy(const Contact& c, bool bonded_now) {
   // that closes from a gap is not the scheme's to dissipate.
   const double dd = c.d_iter - c.d0;
   e.numerical += 0.5 * c.kn * dd * dd;
-  if (closes_from_a_gap(c, bonded_now)) e.numerical -= spring_energy(c.kn, c.d0);
+  if (closes_from_a_gap(c, bonded_now)) e.numerical -= spring_energy(c.kn, c.d0 - c.rest_gap);
   if (c.trial == ContactState::Locked) {
     const double ds = c.s_iter - c.s0;
     e.numerical += 0.5 * c.ks * ds * ds;

@@ -173,6 +173,11 @@ void Engine::detect() {
       deepest_overlap = std::max(deepest_overlap, -c.d0);
     }
     linearise_contact(c, linear_[k], blocks_);
+    // An ordinary contact that starts the step open, or is new, pushes from the overlap it has
+    // now as far as that lies inside the open-close band; overlap deeper than the band (a contact
+    // found late) still pushes back (Contact::rest_gap).
+    if (!p || c.state == ContactState::Open)
+      c.rest_gap = bonded || c.cohesive ? 0.0 : std::clamp(c.d0, -state_band(), 0.0);
     saved_slide_sign_[k] = c.slide_sign;
   }
   ledger_.total += chunked_sum<StepEnergy>(static_cast<std::int64_t>(carried.size()), [&](std::int64_t k) {

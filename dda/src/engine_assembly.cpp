@@ -153,7 +153,7 @@ bool Engine::judge(int& changed_first) {
   const auto nc = static_cast<std::int64_t>(set_.contacts.size());
   int first = std::numeric_limits<int>::max();
   int changed = 0;
-  const double tol = options_.state_tolerance * allowed_;
+  const double tol = state_band();
 #pragma omp parallel for schedule(static) reduction(+ : changed) reduction(min : first)
   for (std::int64_t k = 0; k < nc; ++k) {
     Contact& c = set_.contacts[k];

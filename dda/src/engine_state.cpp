@@ -28,7 +28,7 @@ namespace ddafrac::dda {
 
 // A field added to one of these records must be added to its function below as well, or a
 // resumed run silently starts from its default: the sizes make the compiler say so.
-static_assert(sizeof(Contact) == 224, "Contact changed: update serialize(Contact) in engine_state.cpp");
+static_assert(sizeof(Contact) == 232, "Contact changed: update serialize(Contact) in engine_state.cpp");
 static_assert(sizeof(Statistics) == 208, "Statistics changed: update serialize(Statistics)");
 static_assert(sizeof(Joint) == 40, "Joint changed: update serialize(Joint)");
 
@@ -55,7 +55,7 @@ void serialize(Archive& a, Joint& j, unsigned) {
 template <class Archive>
 void serialize(Archive& a, Contact& c, unsigned) {
   a& c.vblock& c.eblock& c.vertex& c.edge0& c.edge1& c.joint& c.joint_set& c.vertex_vertex& c.shared_node;
-  a& c.state& c.ref_t& c.normal_force& c.shear_force& c.slip& c.slide_sign;
+  a& c.state& c.ref_t& c.normal_force& c.shear_force& c.slip& c.slide_sign& c.rest_gap;
   a& c.cohesive& c.cohesive_length& c.stored_normal& c.stored_shear& c.was_bonded;
   a& c.kn& c.ks& c.tan_phi& c.cohesion& c.tensile_strength;
   a& c.d0& c.s0& c.edge_length;

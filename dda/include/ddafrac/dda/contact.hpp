@@ -36,6 +36,11 @@ struct Contact {
   double shear_force = 0.0;   // N/m
   double slip = 0.0;          // accumulated sliding displacement, m
   double slide_sign = 0.0;    // direction of sliding along the edge (+1/-1)
+  // Gap at which the normal spring is unstretched, m (≤ 0): an ordinary contact that closes
+  // after overlapping inside the open-close band (judge_contact) pushes from the overlap it had
+  // when its step started, not from zero gap, so that the band's overlap, built up with no spring,
+  // adds no energy (docs/design.md §4.4). 0 for joints and for contacts that close from a gap.
+  double rest_gap = 0.0;
   // Cohesive real joint (closed at t = 0, never failed): carries tension up to σt·l_c and shear
   // up to c·l_c + fn·tanφ; once either is exceeded it keeps friction only, for good.
   bool cohesive = false;

@@ -68,8 +68,8 @@ inline JointStrength joint_strength(double tensile_strength, double cohesion, do
 /// Shear is an elastic-plastic spring measured from the reference point (return mapping): a
 /// closed contact slides while ks·|s| exceeds tanφ·fn, in the direction of s; a sliding contact
 /// keeps its elastic part at the limit and its reference point follows the plastic slip.
-/// A closed ordinary contact opens as soon as its spring would pull (gap > 0): only bonded and
-/// cohesive contacts carry tension.
+/// A closed ordinary contact opens as soon as its spring would pull (gap > Contact::rest_gap): only
+/// bonded and cohesive contacts carry tension.
 /// `tolerance` (m) is a hysteresis band that keeps contacts sitting exactly at a threshold from
 /// flipping forever: an open contact closes only once it overlaps by more than `tolerance`, a locked one slides only if
 /// its shear exceeds the friction limit by ks·tolerance, a sliding one locks only when its

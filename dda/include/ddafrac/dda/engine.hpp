@@ -193,6 +193,8 @@ class Engine {
   void serialize_carried_state(Archive& archive);  // engine_state.cpp
   void detect();
   void start_cohesive(Contact& c) const;
+  /// The open-close hysteresis band, m: state_tolerance × the allowed step displacement.
+  double state_band() const { return options_.state_tolerance * allowed_; }
   void block_terms(double dt);
   /// The step's matrix and load vector; `whole` = false re-gathers only what the contacts whose
   /// coefficients changed since the previous assembly of the step touch.
