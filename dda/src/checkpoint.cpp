@@ -18,8 +18,8 @@ namespace {
 /// First bytes of the archive, so that any other file is refused by name.
 constexpr std::string_view kMagic = "ddafrac checkpoint";
 /// Raised whenever the layout of a checkpoint (or of the engine's carried state) changes.
-constexpr int kFormat =
-    3;  // 2: the contacts without their linearisation; 3: the residual's sources and the contacts' rest gap
+// 2: the contacts without their linearisation; 3: the residual's sources; 4: the contacts' rest gap.
+constexpr int kFormat = 4;
 
 constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
 constexpr std::uint64_t kFnvPrime = 1099511628211ull;
