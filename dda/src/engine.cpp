@@ -219,7 +219,8 @@ void Engine::reset_trials() {
 Energies Engine::accept(double dt) {
   const auto n = static_cast<std::int64_t>(blocks_.block_count());
   const auto nc = static_cast<std::int64_t>(set_.contacts.size());
-  ledger_.total += block_step_energy(dt);
+  const BlockStepEnergy blocks_energy = block_step_energy(dt);
+  ledger_.total += blocks_energy.step;
   // One pass over the contacts: each term books a contact's step energy and then commits it
   // (the term touches its own contact only, so the chunked sum stays thread-count independent).
   const ContactCommit committed = chunked_sum<ContactCommit>(nc, [&](std::int64_t k) {
@@ -245,12 +246,8 @@ Energies Engine::accept(double dt) {
   if (committed.sliding) active_.friction = true;
   stats_.cohesion_failures += committed.cohesion_lost;
   const bool dynamic = active_.dynamic;
-  const double t1 = time_ + dt;
-  // Each term moves its own block and returns what the block and its anchors store at the end
-  // of the linearised step (on the geometry it started from); record_step sets that against the
-  // same energies on the moved geometry (ResidualSources).
-  const Energies linearised_end = chunked_sum<Energies>(n, [&](std::int64_t i) {
-    Energies end;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
     const Vec6& d = d_[i];
     const PolygonIntegrals& g = blocks_.geometry[i];
     for (Index v = blocks_.begin(i); v < blocks_.end(i); ++v)
@@ -261,8 +258,6 @@ Energies Engine::accept(double dt) {
     }
     for (Index a = blocks_.anchor_offsets[i]; a < blocks_.anchor_offsets[i + 1]; ++a) {
       Anchor& p = blocks_.anchors[static_cast<std::size_t>(a)];
-      const Eigen::Vector2d linear = Eigen::Vector2d(p.x, p.y) + displacement_matrix(g.cx, g.cy, p.x, p.y) * d;
-      end.support += 0.5 * anchor_penalty_ * anchor_stretch(p, linear.x(), linear.y(), t1).squaredNorm();
       displace_point(g.cx, g.cy, d, p.x, p.y);
     }
     const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
@@ -273,12 +268,9 @@ Energies Engine::accept(double dt) {
       blocks_.velocity[i] = 2.0 / dt * d - blocks_.velocity[i];
     else
       blocks_.velocity[i].setZero();
-    end.strain = block_strain_energy(i);
-    end.kinetic = block_kinetic_energy(i);
-    return end;
-  });
+  }
   update_block_geometry(blocks_);
-  return linearised_end;
+  return blocks_energy.linearised_end;
 }
 
 std::vector<Engine::BodyLoad> Engine::body_loads() const {

@@ -13,26 +13,35 @@ namespace ddafrac::dda {
 
 using detail::chunked_sum;
 
-StepEnergy Engine::block_step_energy(double dt) const {
+Engine::BlockStepEnergy Engine::block_step_energy(double dt) const {
   // Terms of the linear system of the step (block_terms): ½·Δεᵀ·A·E·Δε of the elasticity,
   // ½·p·|T·D|² of the anchors, the damping force −η·M·V1, and in static mode the kinetic energy
   // ½·V1ᵀ·M·V1 thrown away with the velocities; the work of gravity, point loads and moving
-  // anchor targets.
+  // anchor targets. Beside them, what block and anchors store at the end of the linearised step
+  // (ResidualSources: record_step sets it against the moved geometry's).
   const auto& an = scene_.analysis;
   const double t0 = time_, t1 = time_ + dt;
   const bool dynamic = active_.dynamic;
   const double eta = options_.mass_damping;
-  return chunked_sum<StepEnergy>(static_cast<std::int64_t>(blocks_.block_count()), [&](std::int64_t i) {
-    StepEnergy e;
+  return chunked_sum<BlockStepEnergy>(static_cast<std::int64_t>(blocks_.block_count()), [&](std::int64_t i) {
+    BlockStepEnergy b;
+    StepEnergy& e = b.step;
+    Energies& end = b.linearised_end;
     const Vec6& d = d_[i];
     const PolygonIntegrals& g = blocks_.geometry[i];
     const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
     const Vec3 de = d.segment<3>(3);
     e.numerical += 0.5 * g.area * de.dot(mat.elastic * de);
-    const Mat6 m = (blocks_.mass[i] / g.area) * mass_integral(g);
+    const Vec3 stress_end = blocks_.stress[i] + mat.elastic * de;
+    end.strain = 0.5 * g.area * stress_end.dot(mat.compliance * stress_end);
+    const Mat6 unit_mass = mass_integral(g);
+    const Mat6 m = (blocks_.mass[i] / g.area) * unit_mass;
     const Vec6 v1 = dynamic ? Vec6(2.0 / dt * d - blocks_.velocity[i]) : Vec6(2.0 / dt * d);
     e.numerical += eta * v1.dot(m * d);
-    if (!dynamic) e.numerical += 0.5 * v1.dot(m * v1);
+    if (dynamic)
+      end.kinetic = 0.5 * (blocks_.mass[i] / g.area) * v1.dot(unit_mass * v1);
+    else
+      e.numerical += 0.5 * v1.dot(m * v1);
     e.work_gravity += blocks_.mass[i] * (an.gravity[0] * d[kU] + an.gravity[1] * d[kV]);
     for (Index l = blocks_.load_offsets[i]; l < blocks_.load_offsets[i + 1]; ++l) {
       const PointLoad& p = blocks_.loads[static_cast<std::size_t>(l)];
@@ -40,11 +49,14 @@ StepEnergy Engine::block_step_energy(double dt) const {
     }
     for (Index a = blocks_.anchor_offsets[i]; a < blocks_.anchor_offsets[i + 1]; ++a) {
       const Anchor& p = blocks_.anchors[static_cast<std::size_t>(a)];
-      e.numerical += 0.5 * anchor_penalty_ * (displacement_matrix(g.cx, g.cy, p.x, p.y) * d).squaredNorm();
+      const Eigen::Vector2d step = displacement_matrix(g.cx, g.cy, p.x, p.y) * d;
+      e.numerical += 0.5 * anchor_penalty_ * step.squaredNorm();
       const Eigen::Vector2d r0 = anchor_stretch(p, p.x, p.y, t0), r1 = anchor_stretch(p, p.x, p.y, t1);
       e.work_supports += 0.5 * anchor_penalty_ * (r1.squaredNorm() - r0.squaredNorm());
+      const Eigen::Vector2d linear = Eigen::Vector2d(p.x, p.y) + step;
+      end.support += 0.5 * anchor_penalty_ * anchor_stretch(p, linear.x(), linear.y(), t1).squaredNorm();
     }
-    return e;
+    return b;
   });
 }
 

@@ -215,7 +215,18 @@ class Engine {
   /// what accept() returned.
   void record_step(StepReport& rep, const Energies& linearised_end);
   void reset_trials();
-  StepEnergy block_step_energy(double dt) const;
+  /// The block terms of the step's energy, and what the blocks and their anchors store at the
+  /// end of the linearised step, on the geometry it started from (one pass over the blocks).
+  struct BlockStepEnergy {
+    StepEnergy step;
+    Energies linearised_end;  // strain, kinetic and support only
+    BlockStepEnergy& operator+=(const BlockStepEnergy& o) {
+      step += o.step;
+      linearised_end += o.linearised_end;
+      return *this;
+    }
+  };
+  BlockStepEnergy block_step_energy(double dt) const;
   /// ½·Vᵀ·M·V and ½·A·σᵀ·C·σ of block i on its current geometry, J/m.
   double block_kinetic_energy(Index i) const;
   double block_strain_energy(Index i) const;
