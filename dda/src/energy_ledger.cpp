@@ -66,8 +66,8 @@ StepEnergy released_energy(const Contact& c, bool bonded_now) {
 }
 
 namespace {
-/// An ordinary contact that closes from a gap d0 > 0 only pushes from the moment it touches: the
-/// linear system's start energy ½·kn·d0² of its spring is fictitious.
+/// An ordinary contact that closes from a gap (d0 above its rest gap) only pushes from the moment
+/// it touches: the linear system's start energy ½·kn·(d0 − rest gap)² of its spring is fictitious.
 bool closes_from_a_gap(const Contact& c, bool bonded_now) {
   const bool carries_tension = bonded_now || (c.cohesive && !c.cohesion_lost);
   return !carries_tension && c.d0 > c.rest_gap;

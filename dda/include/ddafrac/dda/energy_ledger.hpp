@@ -64,9 +64,10 @@ struct StepEnergy {
 struct ResidualSources {
   double contacts_kept = 0.0;  // contacts closed at both ends of the step, on the line they had:
                                // gap and shear re-measured on the moved geometry
-  // Contacts on the line they had, open at the step's start and closed at its end: the overlap
-  // that built up while the open-close band (EngineOptions::state_tolerance) kept them open, with
-  // no spring, ½·kn·d0² each.
+  // Contacts on the line they had, open at the step's start and closed at its end: what the
+  // overlap built up while the open-close band (EngineOptions::state_tolerance) kept them open
+  // stores beyond their rest gap, ½·kn·(d0 − rest gap)² each; zero while the rest gap takes up
+  // that overlap (docs/design.md §4.4).
   double contacts_reclosed = 0.0;
   double contacts_new = 0.0;  // contacts new or on a new line that close: their start energy
   double blocks = 0.0;        // strain and kinetic energy on the moved areas and mass matrices
