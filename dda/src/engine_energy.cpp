@@ -13,6 +13,17 @@ namespace ddafrac::dda {
 
 using detail::chunked_sum;
 
+namespace {
+/// ½·(m/A)·Vᵀ·(∫ Tᵀ·T dA)·V: the kinetic energy of a block moving with V, J/m.
+double kinetic_energy(double mass_per_area, const Mat6& unit_mass, const Vec6& v) {
+  return 0.5 * mass_per_area * v.dot(unit_mass * v);
+}
+/// ½·A·σᵀ·C·σ: the strain energy of a block of area A under stress σ, J/m.
+double strain_energy(double area, const MaterialData& mat, const Vec3& stress) {
+  return 0.5 * area * stress.dot(mat.compliance * stress);
+}
+}  // namespace
+
 Engine::BlockStepEnergy Engine::block_step_energy(double dt) const {
   // Terms of the linear system of the step (block_terms): ½·Δεᵀ·A·E·Δε of the elasticity,
   // ½·p·|T·D|² of the anchors, the damping force −η·M·V1, and in static mode the kinetic energy
@@ -33,13 +44,13 @@ Engine::BlockStepEnergy Engine::block_step_energy(double dt) const {
     const Vec3 de = d.segment<3>(3);
     e.numerical += 0.5 * g.area * de.dot(mat.elastic * de);
     const Vec3 stress_end = blocks_.stress[i] + mat.elastic * de;
-    end.strain = 0.5 * g.area * stress_end.dot(mat.compliance * stress_end);
+    end.strain = strain_energy(g.area, mat, stress_end);
     const Mat6 unit_mass = mass_integral(g);
     const Mat6 m = (blocks_.mass[i] / g.area) * unit_mass;
     const Vec6 v1 = dynamic ? Vec6(2.0 / dt * d - blocks_.velocity[i]) : Vec6(2.0 / dt * d);
     e.numerical += eta * v1.dot(m * d);
     if (dynamic)
-      end.kinetic = 0.5 * (blocks_.mass[i] / g.area) * v1.dot(unit_mass * v1);
+      end.kinetic = kinetic_energy(blocks_.mass[i] / g.area, unit_mass, v1);
     else
       e.numerical += 0.5 * v1.dot(m * v1);
     e.work_gravity += blocks_.mass[i] * (an.gravity[0] * d[kU] + an.gravity[1] * d[kV]);
@@ -61,15 +72,13 @@ Engine::BlockStepEnergy Engine::block_step_energy(double dt) const {
 }
 
 double Engine::block_kinetic_energy(Index i) const {
-  const Vec6& v = blocks_.velocity[i];
   const PolygonIntegrals& g = blocks_.geometry[i];
-  return 0.5 * (blocks_.mass[i] / g.area) * v.dot(mass_integral(g) * v);
+  return kinetic_energy(blocks_.mass[i] / g.area, mass_integral(g), blocks_.velocity[i]);
 }
 
 double Engine::block_strain_energy(Index i) const {
   const MaterialData& mat = blocks_.materials[static_cast<std::size_t>(blocks_.material[i])];
-  const Vec3& s = blocks_.stress[i];
-  return 0.5 * blocks_.geometry[i].area * s.dot(mat.compliance * s);
+  return strain_energy(blocks_.geometry[i].area, mat, blocks_.stress[i]);
 }
 
 Eigen::Vector2d Engine::anchor_stretch(const Anchor& p, double x, double y, double t) {
