@@ -66,7 +66,7 @@ def save(figure, path):
 LEDGER_STORED = (("kinetic_energy", "kinetic"), ("strain_energy", "strain"), ("contact_energy", "contact springs"),
                  ("support_energy", "support springs"))
 LEDGER_DISSIPATED = (("friction_dissipation", "friction"), ("joint_break_loss", "joint breaks"),
-                     ("numerical_dissipation", "time scheme"))
+                     ("numerical_dissipation", "time scheme"), ("damping_dissipation", "mass damping"))
 LEDGER_WORK = ("work_gravity", "work_loads", "work_supports")
 
 
@@ -84,8 +84,11 @@ def plot_energy(history, out_dir, title):
         axes.legend()
         save(figure, os.path.join(out_dir, "energy.png"))
         return
-    layers = [numbers(history, key) for key, _ in LEDGER_STORED + LEDGER_DISSIPATED]
-    labels = [label for _, label in LEDGER_STORED] + [f"dissipated: {label}" for _, label in LEDGER_DISSIPATED]
+    # A run written before a column existed (damping_dissipation) or one without damping shows no such layer.
+    dissipated = [(key, label) for key, label in LEDGER_DISSIPATED
+                  if key in history and (key != "damping_dissipation" or numbers(history, key).any())]
+    layers = [numbers(history, key) for key, _ in LEDGER_STORED + tuple(dissipated)]
+    labels = [label for _, label in LEDGER_STORED] + [f"dissipated: {label}" for _, label in dissipated]
     stored0 = sum(numbers(history, key)[0] for key, _ in LEDGER_STORED)
     supplied = stored0 + sum(numbers(history, key) for key in LEDGER_WORK)
     balance = numbers(history, "balance_error")

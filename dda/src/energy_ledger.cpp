@@ -21,6 +21,7 @@ StepEnergy& StepEnergy::operator+=(const StepEnergy& o) {
   friction += o.friction;
   joint_breaks += o.joint_breaks;
   numerical += o.numerical;
+  damping += o.damping;
   return *this;
 }
 

@@ -100,7 +100,7 @@ Engine::Engine(scene::Scene scene, const meshes::Mesh& mesh, EngineOptions optio
   active_.anchors = !blocks_.anchors.empty();
   active_.bonded_joints = !blocks_.joints.empty();
   active_.fracture = !blocks_.joints.empty();
-  active_.damping = options_.mass_damping > 0.0;
+  active_.damping = an.mass_damping > 0.0;
   if (!active_.dynamic) std::fill(blocks_.velocity.begin(), blocks_.velocity.end(), Vec6::Zero());
 }
 

@@ -28,8 +28,9 @@ void Engine::block_terms(double dt) {
   base_diag_.resize(static_cast<std::size_t>(n));
   base_rhs_.resize(static_cast<std::size_t>(n));
   const auto& an = scene_.analysis;
-  const double mass_k = 2.0 / (dt * dt) + 2.0 * options_.mass_damping / dt;  // Newmark γ=1, β=½ (+ηM)
-  const double mass_f = 2.0 / dt + options_.mass_damping;
+  const double eta = an.mass_damping;
+  const double mass_k = 2.0 / (dt * dt) + 2.0 * eta / dt;  // Newmark γ=1, β=½ (+ηM)
+  const double mass_f = 2.0 / dt + eta;
   const double t_end = time_ + dt;
   const bool dynamic = active_.dynamic;
   const bool gravity = active_.gravity;

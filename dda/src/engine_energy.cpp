@@ -26,14 +26,14 @@ double strain_energy(double area, const MaterialData& mat, const Vec3& stress) {
 
 Engine::BlockStepEnergy Engine::block_step_energy(double dt) const {
   // Terms of the linear system of the step (block_terms): ½·Δεᵀ·A·E·Δε of the elasticity,
-  // ½·p·|T·D|² of the anchors, the damping force −η·M·V1, and in static mode the kinetic energy
-  // ½·V1ᵀ·M·V1 thrown away with the velocities; the work of gravity, point loads and moving
-  // anchor targets. Beside them, what block and anchors store at the end of the linearised step
-  // (ResidualSources: record_step sets it against the moved geometry's).
+  // ½·p·|T·D|² of the anchors, the work of the damping force −η·M·V1 (booked apart), and in static mode the kinetic
+  // energy ½·V1ᵀ·M·V1 thrown away with the velocities; the work of gravity, point loads and moving anchor targets.
+  // Beside them, what block and anchors store at the end of the linearised step (ResidualSources: record_step sets it
+  // against the moved geometry's).
   const auto& an = scene_.analysis;
   const double t0 = time_, t1 = time_ + dt;
   const bool dynamic = active_.dynamic;
-  const double eta = options_.mass_damping;
+  const double eta = an.mass_damping;
   return chunked_sum<BlockStepEnergy>(static_cast<std::int64_t>(blocks_.block_count()), [&](std::int64_t i) {
     BlockStepEnergy b;
     StepEnergy& e = b.step;
@@ -48,7 +48,7 @@ Engine::BlockStepEnergy Engine::block_step_energy(double dt) const {
     const Mat6 unit_mass = mass_integral(g);
     const Mat6 m = (blocks_.mass[i] / g.area) * unit_mass;
     const Vec6 v1 = dynamic ? Vec6(2.0 / dt * d - blocks_.velocity[i]) : Vec6(2.0 / dt * d);
-    e.numerical += eta * v1.dot(m * d);
+    e.damping += eta * v1.dot(m * d);
     if (dynamic)
       end.kinetic = kinetic_energy(blocks_.mass[i] / g.area, unit_mass, v1);
     else

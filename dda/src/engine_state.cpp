@@ -102,7 +102,7 @@ void serialize(Archive& a, Energies& e, unsigned) {
 
 template <class Archive>
 void serialize(Archive& a, StepEnergy& e, unsigned) {
-  a& e.work_gravity& e.work_loads& e.work_supports& e.friction& e.joint_breaks& e.numerical;
+  a& e.work_gravity& e.work_loads& e.work_supports& e.friction& e.joint_breaks& e.numerical& e.damping;
 }
 
 template <class Archive>

@@ -24,7 +24,8 @@ std::string history_header() {
          "kinetic_free_energy,kinetic_strain_ratio,max_penetration,contacts,closed,sliding,new_cracks,cracks_total,"
          "cracks_tensile,"
          "cracks_shear,support_energy,work_gravity,work_loads,work_supports,friction_dissipation,joint_break_loss,"
-         "numerical_dissipation,balance_error,residual_contacts_kept,residual_contacts_reclosed,residual_contacts_new,"
+         "numerical_dissipation,damping_dissipation,balance_error,residual_contacts_kept,residual_contacts_reclosed,"
+         "residual_contacts_new,"
          "residual_blocks,residual_supports\n";
 }
 
@@ -34,12 +35,13 @@ std::string history_row(const StepReport& r) {
   const ResidualSources& rs = r.ledger.residual_sources;
   return fmt::format(
       "{},{:.17g},{:.17g},{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.9g},{:.17g},{},{},{},{},{},{},{},"
-      "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.9g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",
+      "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.9g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}"
+      "\n",
       r.step, r.time, r.dt, r.open_close, r.cg_iterations, r.cuts, r.energy.kinetic, r.energy.strain, r.energy.contact,
       r.energy.kinetic_free, ratio, r.max_penetration, r.contacts, r.closed, r.sliding, r.new_cracks, r.cracks.total,
       r.cracks.tensile, r.cracks.shear, r.energy.support, w.work_gravity, w.work_loads, w.work_supports, w.friction,
-      w.joint_breaks, w.numerical, r.ledger.balance_error(), rs.contacts_kept, rs.contacts_reclosed, rs.contacts_new,
-      rs.blocks, rs.supports);
+      w.joint_breaks, w.numerical, w.damping, r.ledger.balance_error(), rs.contacts_kept, rs.contacts_reclosed,
+      rs.contacts_new, rs.blocks, rs.supports);
 }
 
 std::string cracks_document(const std::vector<CrackEvent>& cracks) {
@@ -171,6 +173,7 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
                 {"search_distance_factor", an.search_distance_factor},
                 {"pair_list_skin_factor", an.pair_list_skin_factor},
                 {"solver_tolerance", an.solver_tolerance},
+                {"mass_damping", an.mass_damping},
                 {"blocks", e.blocks().block_count()},
                 {"virtual_joints", e.blocks().joints.size()}};
   j["threads"] = o.threads;
@@ -217,6 +220,7 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
                   {{"friction", ledger.total.friction},
                    {"joint_breaks", ledger.total.joint_breaks},
                    {"numerical", ledger.total.numerical},
+                   {"damping", ledger.total.damping},
                    {"total", ledger.dissipated()}}},
                  {"residual",
                   {{"contacts_kept", ledger.residual_sources.contacts_kept},

@@ -110,6 +110,13 @@ Analysis parse_analysis(TableReader t) {
   if (auto f = t.number("pair_list_skin_factor", NumberRule::non_negative("pair-list skin / search distance"),
                         Need::Optional))
     a.pair_list_skin_factor = *f;
+  if (auto eta =
+          t.number("mass_damping", NumberRule::non_negative("1/s, η of the damping force −η·M·v"), Need::Optional)) {
+    a.mass_damping = *eta;
+    if (a.mode == Mode::Static && a.mass_damping > 0.0)
+      t.problem("mass_damping",
+                "has no effect in static mode (velocities are reset every step): use 0 or leave it out");
+  }
   if (a.end_time > 0 && a.output_interval > a.end_time)
     t.problem("output_interval", fmt::format("must not exceed analysis.end_time ({:g} s)", a.end_time));
   check_interval_count(t, "output_interval", a.output_interval, a.end_time, kMaxOutputIntervals);

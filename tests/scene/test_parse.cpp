@@ -207,6 +207,25 @@ BOOST_AUTO_TEST_CASE(a_solver_tolerance_round_off_cannot_reach_is_refused) {
                  "analysis.solver_tolerance", 11, "got 1e-16");
 }
 
+BOOST_AUTO_TEST_CASE(mass_damping_is_off_unless_given) {
+  BOOST_TEST(scene::parse_scene(kValid, "ok.toml").analysis.mass_damping == 0.0);
+  const scene::Scene s = scene::parse_scene(
+      replaced(kValid, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nmass_damping = 4.8e3"), "ok.toml");
+  BOOST_TEST(s.analysis.mass_damping == 4.8e3);
+}
+
+BOOST_AUTO_TEST_CASE(negative_mass_damping_is_refused) {
+  expect_problem(replaced(kValid, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nmass_damping = -1"),
+                 "analysis.mass_damping", 11, ">= 0");
+}
+
+BOOST_AUTO_TEST_CASE(mass_damping_in_static_mode_is_refused) {
+  const std::string static_scene =
+      replaced(replaced(kValid, "mode = \"dynamic\"", "mode = \"static\""), "velocity = ", "# velocity = ");
+  expect_problem(replaced(static_scene, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nmass_damping = 100"),
+                 "analysis.mass_damping", 11, "no effect in static mode");
+}
+
 BOOST_AUTO_TEST_CASE(zero_search_distance_is_refused) {
   expect_problem(replaced(kValid, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nsearch_distance_factor = 0"),
                  "analysis.search_distance_factor", 11, "> 0");

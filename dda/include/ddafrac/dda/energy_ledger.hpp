@@ -54,6 +54,7 @@ struct StepEnergy {
   double friction = 0.0;       // dissipated by sliding contacts
   double joint_breaks = 0.0;   // spring energy of broken virtual joints released as they open
   double numerical = 0.0;      // the time scheme's dissipation (see the file comment)
+  double damping = 0.0;        // taken out by the mass damping force −η·M·V1 (analysis.mass_damping)
   StepEnergy& operator+=(const StepEnergy& o);
 };
 
@@ -83,7 +84,7 @@ struct EnergyLedger {
   StepEnergy total;      // cumulative since t = 0
   ResidualSources residual_sources;  // cumulative since t = 0: residual() split by where it arose
   double work() const { return total.work_gravity + total.work_loads + total.work_supports; }
-  double dissipated() const { return total.friction + total.joint_breaks + total.numerical; }
+  double dissipated() const { return total.friction + total.joint_breaks + total.numerical + total.damping; }
   /// (stored + dissipated) − (initial + work), J/m: positive = energy created.
   double residual() const { return stored.stored() + dissipated() - (initial + work()); }
   /// ((stored + dissipated) − (initial + work)) / (initial + work): positive = energy created.

@@ -26,7 +26,6 @@ struct EngineOptions {
   double dt_grow_factor = 1.2;           // dt ×= this after an easy step, up to dt_max
   int easy_open_close = 2;               // "easy" = converged within this many iterations
   double dt_floor_fraction = 1e-6;       // dt below dt_max·this = numerical trouble
-  double mass_damping = 0.0;             // η of C = ηM, 1/s (off by default)
   double state_tolerance = 1e-4;         // open-close hysteresis / allowed step displacement
   DetectionParams detection;             // search_distance and skin: from the scene's analysis
   std::vector<PointLoad> point_loads;    // extra loads (tests, benchmarks)

@@ -64,6 +64,10 @@ struct Analysis {
   double solver_tolerance = kDefaultSolverTolerance;  // PCG's relative residual |b - K·x| / |b| at which it stops
   double search_distance_factor = kDefaultSearchDistanceFactor;  // contact search distance / allowed step displacement
   double pair_list_skin_factor = kDefaultPairListSkinFactor;     // skin of the contact pair list / search distance
+  // η of the mass-proportional damping force −η·M·v on every block, 1/s (0: none; dynamic mode
+  // only). It damps the slow modes most (damping ratio η/(2ω) of a mode of angular frequency ω),
+  // such as a platen ringing on a disc, and drags a block moving as a whole by η·m·v.
+  double mass_damping = 0.0;
 };
 
 struct Gauge {
