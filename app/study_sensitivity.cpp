@@ -1,6 +1,6 @@
 // `ddafrac study sensitivity [--family mesh,penalty,...] [--blocks N] [study options]`: how far the
 // fracture results can be trusted. Runs case 4 and the flattened disc at varied mesh, joint
-// stiffness, time step and loading rate, each variant a scene written into DIR/scenes/ (a base
+// stiffness, time step, loading rate and mass damping, each variant a scene written into DIR/scenes/ (a base
 // scene of scenes/ and the values the variant changes, so any run can be repeated alone), then
 // writes study.md, study.csv and, through the plotting script, the families' figures and
 // analysis.md (convergence orders, indirect tensile strength, verdicts).
@@ -60,8 +60,14 @@ constexpr double kPlatenSpeeds[] = {1.0, 0.5, 0.25, 0.125};
 /// many times longer, with the platen as far per step as in the scene (its speed divided alike),
 /// so that the term is ~10⁻⁵ of the stiffness and each step is near equilibrium.
 constexpr double kStaticTimeStretch = 1e4;
+/// Mass damping η of the damping family (analysis.mass_damping, 1/s), on the flattened disc at the
+/// scene's platen speed: about 0.1, 0.2 and 0.5 of critical (η/(2ω)) for the platen force's ringing,
+/// 3.9 kHz on the 2045-block disc at 0.25 m/s. It also drags the disc, which moves down at about half
+/// the platen's speed, by η·m·v/2. The family runs the disc undamped and in static mode (the rate
+/// family's runs) beside them.
+constexpr double kMassDampings[] = {5e3, 1e4, 2.5e4};
 constexpr const char* kPlaten = "top_platen";  // the prescribed body of the Brazilian scenes
-constexpr const char* kFamilies[] = {"mesh", "penalty", "penalty-theta", "timestep", "slot-tips", "rate"};
+constexpr const char* kFamilies[] = {"mesh", "penalty", "penalty-theta", "timestep", "slot-tips", "rate", "damping"};
 // The names under which study.json records --family and --blocks (StudyKind::options).
 constexpr const char* kFamilyOption = "family";
 constexpr const char* kBlocksOption = "blocks";
@@ -204,6 +210,13 @@ class VariantBuilder {
     return stretched(std::move(v), base, speed, stretch);
   }
 
+  /// A damping force −η·M·v on every block (analysis.mass_damping, 1/s).
+  Variant with_mass_damping(Variant v, double eta) const {
+    v.name += fmt::format("-eta{:g}", eta);
+    v.tables["analysis"]["mass_damping"] = number(eta);
+    return v;
+  }
+
   /// Static mode, the platen moving as far per step as in the scene over the same travel
   /// (kStaticTimeStretch).
   Variant in_static_mode(Variant v) const {
@@ -288,6 +301,12 @@ std::vector<Variant> variants(const SensitivityArguments& args, const fs::path& 
     for (const double v : kPlatenSpeeds) add(build.with_platen_speed(build.at_scale(kFlattenedDiscs[0]), v), "rate");
     add(build.in_static_mode(build.at_scale(kFlattenedDiscs[0])), "rate");
   }
+  if (wanted("damping")) {
+    add(build.at_scale(kFlattenedDiscs[0]), "damping");
+    for (const double eta : kMassDampings)
+      add(build.with_mass_damping(build.at_scale(kFlattenedDiscs[0]), eta), "damping");
+    add(build.in_static_mode(build.at_scale(kFlattenedDiscs[0])), "damping");
+  }
   for (const Variant& v : all) build.write(v);
   return all;
 }
@@ -360,8 +379,8 @@ void register_study_sensitivity(CLI::App& study) {
   auto args = std::make_shared<SensitivityArguments>();
   CLI::App* command = study.add_subcommand(
       "sensitivity",
-      "how crack results move with the mesh, the joints' stiffness, the time step, the slot tips' mesh and the "
-      "loading rate "
+      "how crack results move with the mesh, the joints' stiffness, the time step, the slot tips' mesh, the "
+      "loading rate and damping of the platen's ringing "
       "(case 4 and the flattened disc), as one resumable command");
   command->add_option("--family", args->families, "only these families (comma-separated; default: all)")
       ->delimiter(',')

@@ -16,6 +16,8 @@ summary.json, scene.resolved.toml, history.csv, gauges.csv and loading.csv, and 
     figures/rate.png            the flattened disc's force-displacement curves per platen speed,
                                 and the peak force against speed
     figures/penalty_theta.png   the θ series' crack counts and lengths at the scene's kn and at 10·E
+    figures/damping.png         the flattened disc's force-displacement curves per mass damping η,
+                                and the peak force against η beside the static run's
 
 Only runs that completed are analysed; the others are listed as missing. Every PNG and
 analysis.md are written whole (temporary name, then rename).
@@ -38,6 +40,7 @@ KILONEWTONS = 1e-3  # kN per N
 MEGAPASCAL = 1e-6  # MPa per Pa
 PERCENT = 100.0
 LOADED_BODY = "top_platen"  # the prescribed platen of the Brazilian scenes
+FIXED_BODY = "bottom_platen"  # the fixed platen: its force is the disc's, without the top platen's drag
 CENTRE_GAUGE = "centre"  # the Brazilian scenes' gauge at the disc's centre
 GAUGE_CASE = "case04"  # the impact case the families vary
 # Slot widths: mesh.slot_end_size of a scene that leaves it out (meshes::MeshControl); a resolved
@@ -56,6 +59,9 @@ PLAUSIBLE_ORDERS = (0.5, 3.0)
 FLAT_RANGE = 1e-9
 # A loading rate is quasi-static when its peak force is within this of the static run's.
 QUASI_STATIC_TOLERANCE = 0.02
+# The platen force's ringing is measured as the RMS of its departure from a straight line over
+# this part of the platen's travel to the first crack (after the start, before any crack).
+RINGING_WINDOW = (0.2, 0.9)
 # The kinetic/strain ratio is read from this fraction of the time to the peak on (before it,
 # the strain energy is still near zero and the ratio means nothing).
 RATIO_START_FRACTION = 0.1
@@ -132,6 +138,7 @@ def read_run(h, case, families, run_dir):
         "largest": bodies[0].get("largest_fragment_fraction") if len(bodies) == 1 else None,
         "wall": summary.get("wall_time", {}).get("total"),
         "balance": summary.get("energy", {}).get("largest_balance_error"),
+        "eta": scene.get("analysis", {}).get("mass_damping", 0.0),
     }
 
 
@@ -415,6 +422,35 @@ def slot_tips_section(runs, figures, save):
     return md
 
 
+def draw_platen_forces(h, dynamic, static, label, x, xlabel, logx, title, path, save):
+    """Two panels: the top platen's force against its travel for every run (labelled by `label`,
+    static mode as "static"), and the dynamic runs' peak force against x(run) beside the static
+    run's as a line."""
+    figure, (curves, peaks) = plt.subplots(1, 2, figsize=(13, 5))
+    for r in dynamic + static:
+        travel, force = platen_curve(h, r, LOADED_BODY)
+        curves.plot(travel * MILLIMETRES, force * KILONEWTONS, label="static" if r["mode"] == "static" else label(r))
+    curves.set_xlabel("platen travel (mm)")
+    curves.set_ylabel("top platen force (kN/m)")
+    curves.legend()
+    curves.grid(alpha=0.3)
+    points = [(x(r), peak_force(r)[0] * KILONEWTONS) for r in dynamic if peak_force(r)]
+    if points:
+        peaks.plot(*zip(*points), "o-", label="dynamic")
+        if logx:
+            log_axis_at(peaks, [value for value, _ in points])
+    elif logx:
+        peaks.set_xscale("log")
+    if static and peak_force(static[0]):
+        peaks.axhline(peak_force(static[0])[0] * KILONEWTONS, color="k", linestyle="--", label="static")
+    peaks.set_xlabel(xlabel)
+    peaks.set_ylabel("peak force (kN/m)")
+    peaks.legend()
+    peaks.grid(alpha=0.3)
+    figure.suptitle(title)
+    save(figure, path)
+
+
 def rate_section(h, runs, figures, save):
     static = [r for r in runs if r["mode"] == "static"]
     dynamic = sorted([r for r in runs if r["mode"] != "static"], key=lambda r: -platen_speed(r))
@@ -430,31 +466,68 @@ def rate_section(h, runs, figures, save):
             for r in dynamic if peak_force(r)) + ".\n"
         md += (f"Verdict: quasi-static to within {QUASI_STATIC_TOLERANCE * PERCENT:g}% of the static peak at "
                + (f"{max(within):g} m/s and slower.\n\n" if within else "none of the speeds run.\n\n"))
-    figure, (curves, peaks) = plt.subplots(1, 2, figsize=(13, 5))
-    for r in dynamic + static:
-        loading = h.read_columns(os.path.join(r["dir"], "loading.csv"))
-        mask = np.array([b == LOADED_BODY for b in loading["body"]])
-        label = "static" if r["mode"] == "static" else f"{platen_speed(r):g} m/s"
-        curves.plot(np.abs(h.numbers(loading, "displacement_y")[mask]) * MILLIMETRES,
-                    np.abs(h.numbers(loading, "force_y")[mask]) * KILONEWTONS, label=label)
-    curves.set_xlabel("platen travel (mm)")
-    curves.set_ylabel("force (kN/m)")
-    curves.legend()
-    curves.grid(alpha=0.3)
-    points = [(platen_speed(r), peak_force(r)[0] * KILONEWTONS) for r in dynamic if peak_force(r)]
-    if points:
-        peaks.plot(*zip(*points), "o-", label="dynamic")
-        log_axis_at(peaks, [speed for speed, _ in points])
-    else:
-        peaks.set_xscale("log")
+    draw_platen_forces(h, dynamic, static, lambda r: f"{platen_speed(r):g} m/s", platen_speed, "platen speed (m/s)",
+                       True, "flattened disc against the loading rate", os.path.join(figures, "rate.png"), save)
+    return md
+
+
+def platen_curve(h, run, body):
+    """(travel of the top platen (m), |force_y| of `body` (N/m)) of a Brazilian run, in time order."""
+    loading = h.read_columns(os.path.join(run["dir"], "loading.csv"))
+    bodies = np.array(loading["body"])
+    travel = np.abs(h.numbers(loading, "displacement_y")[bodies == LOADED_BODY])
+    return travel, np.abs(h.numbers(loading, "force_y")[bodies == body])
+
+
+def ringing(h, run, first):
+    """RMS (N/m) of the top platen force about a straight line fitted over RINGING_WINDOW of the
+    travel to the first crack, or None."""
+    if first is None:
+        return None
+    travel, force = platen_curve(h, run, LOADED_BODY)
+    end = first[2] * platen_speed(run)
+    window = (travel >= RINGING_WINDOW[0] * end) & (travel <= RINGING_WINDOW[1] * end)
+    if window.sum() < 3:
+        return None
+    line = np.polyval(np.polyfit(travel[window], force[window], 1), travel[window])
+    return float(np.sqrt(np.mean((force[window] - line) ** 2)))
+
+
+def damping_share_to_peak(h, run):
+    """What the mass damping took out up to the peak force, as a fraction of the platen's work."""
+    peak = peak_force(run)
+    columns = h.read_columns(os.path.join(run["dir"], "history.csv"))
+    if peak is None or "damping_dissipation" not in columns:
+        return None
+    t = h.numbers(columns, "t")
+    at = max(int(np.searchsorted(t, peak[1])) - 1, 0)
+    work = h.numbers(columns, "work_supports")[at]
+    return h.numbers(columns, "damping_dissipation")[at] / work if work > 0 else None
+
+
+def damping_section(h, runs, figures, save):
+    static = [r for r in runs if r["mode"] == "static"]
+    dynamic = sorted([r for r in runs if r["mode"] != "static"], key=lambda r: r["eta"])
+    md = "## Mass damping of the platen's ringing (flattened disc)\n\n"
+    md += brazilian_table(h, dynamic + static, "η (1/s)", lambda r: r["eta"] if r["mode"] != "static" else None)
+    md += ("\n| case | η (1/s) | ringing of the top platen's force to the first crack, RMS (kN/m) "
+           "| peak force of the bottom (fixed) platen (kN/m) | damping's share of the platen's work to the peak (%) |\n"
+           "|---|--:|--:|--:|--:|\n")
+    for r in dynamic:
+        first = first_crack(h, r)
+        bottom = platen_curve(h, r, FIXED_BODY)[1]
+        md += (f"| {r['case']} | {r['eta']:g} | {cell(scaled(ringing(h, r, first), KILONEWTONS), '{:.1f}')}"
+               f" | {cell(float(bottom.max()) * KILONEWTONS if len(bottom) else None, '{:.1f}')}"
+               f" | {cell(scaled(damping_share_to_peak(h, r), PERCENT), '{:.2g}')} |\n")
+    md += "\n"
     if static and peak_force(static[0]):
-        peaks.axhline(peak_force(static[0])[0] * KILONEWTONS, color="k", linestyle="--", label="static")
-    peaks.set_xlabel("platen speed (m/s)")
-    peaks.set_ylabel("peak force (kN/m)")
-    peaks.legend()
-    peaks.grid(alpha=0.3)
-    figure.suptitle("flattened disc against the loading rate")
-    save(figure, os.path.join(figures, "rate.png"))
+        reference = peak_force(static[0])[0]
+        md += "Peak force against the static run's: " + ", ".join(
+            f"η = {r['eta']:g} 1/s {(peak_force(r)[0] / reference - 1.0) * PERCENT:+.1f}%"
+            for r in dynamic if peak_force(r)) + ".\n\n"
+    draw_platen_forces(h, dynamic, static, lambda r: f"η = {r['eta']:g} 1/s", lambda r: r["eta"],
+                       "mass damping η (1/s)", False, "flattened disc against mass damping",
+                       os.path.join(figures, "damping.png"), save)
     return md
 
 
@@ -519,6 +592,8 @@ def draw_study(args, h, save):
         md += rate_section(h, runs["rate"], figures, save)
     if "penalty-theta" in runs:
         md += theta_section(runs["penalty-theta"], figures, save)
+    if "damping" in runs:
+        md += damping_section(h, runs["damping"], figures, save)
     write_whole(os.path.join(args.study_dir, "analysis.md"), md)
 
 

@@ -40,6 +40,13 @@ check_contact_period_resolved() {
   echo "$name: dt_max = $dt s, no contact-period warning"
 }
 
+# The study's analysis.md has a section whose heading starts with HEADING, and figures/FIGURE exists.
+check_report() {
+  local study=$1 heading=$2 figure=$3
+  grep -q "^## $heading" "$study/analysis.md" || fail "analysis.md has no section '$heading'"
+  [ -s "$study/figures/$figure" ] || fail "no figures/$figure"
+}
+
 # The run of scene file SCENE (with the extra `ddafrac run` arguments after it) on 2 threads
 # writes the same history.csv, cracks.csv and fragments.csv as RUN did on 1.
 check_same_on_two_threads() {

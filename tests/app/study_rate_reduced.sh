@@ -65,8 +65,7 @@ if medians[0] / medians[-1] < least_fall:
 print(f"kinetic/strain ratio falls {medians[0] / medians[-1]:.1f}x from the fastest to the slowest (bound {least_fall}x)")
 PY
 
-grep -q "^## Loading rate" "$study/analysis.md" || fail "analysis.md has no loading-rate section"
-[ -s "$study/figures/rate.png" ] || fail "no figures/rate.png"
+check_report "$study" "Loading rate" rate.png
 
 check_same_on_two_threads "$fast" "$study/$fast" "$exe" "$work/two_threads" "$study/scenes/$fast.toml"
 echo "PASS"
