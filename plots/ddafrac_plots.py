@@ -68,6 +68,8 @@ LEDGER_STORED = (("kinetic_energy", "kinetic"), ("strain_energy", "strain"), ("c
 LEDGER_DISSIPATED = (("friction_dissipation", "friction"), ("joint_break_loss", "joint breaks"),
                      ("numerical_dissipation", "time scheme"), ("damping_dissipation", "mass damping"))
 LEDGER_WORK = ("work_gravity", "work_loads", "work_supports")
+# Layers drawn only where a run has them: the column exists (runs written before it did not) and is not all zero.
+LEDGER_OPTIONAL = ("damping_dissipation",)
 
 
 def plot_energy(history, out_dir, title):
@@ -84,9 +86,8 @@ def plot_energy(history, out_dir, title):
         axes.legend()
         save(figure, os.path.join(out_dir, "energy.png"))
         return
-    # A run written before a column existed (damping_dissipation) or one without damping shows no such layer.
     dissipated = [(key, label) for key, label in LEDGER_DISSIPATED
-                  if key in history and (key != "damping_dissipation" or numbers(history, key).any())]
+                  if key in history and (key not in LEDGER_OPTIONAL or numbers(history, key).any())]
     layers = [numbers(history, key) for key, _ in LEDGER_STORED + tuple(dissipated)]
     labels = [label for _, label in LEDGER_STORED] + [f"dissipated: {label}" for _, label in dissipated]
     stored0 = sum(numbers(history, key)[0] for key, _ in LEDGER_STORED)

@@ -451,9 +451,20 @@ def draw_platen_forces(h, dynamic, static, label, x, xlabel, logx, title, path, 
     save(figure, path)
 
 
+def split_static(runs, order):
+    """(the static-mode runs, the dynamic runs sorted by order(run)) of a Brazilian family."""
+    return ([r for r in runs if r["mode"] == "static"],
+            sorted([r for r in runs if r["mode"] != "static"], key=order))
+
+
+def against_static(dynamic, reference, name):
+    """One sentence: each dynamic run's peak force (named by name(run)) against the static peak."""
+    return "Peak force against the static run's: " + ", ".join(
+        f"{name(r)} {(peak_force(r)[0] / reference - 1.0) * PERCENT:+.1f}%" for r in dynamic if peak_force(r)) + "."
+
+
 def rate_section(h, runs, figures, save):
-    static = [r for r in runs if r["mode"] == "static"]
-    dynamic = sorted([r for r in runs if r["mode"] != "static"], key=lambda r: -platen_speed(r))
+    static, dynamic = split_static(runs, lambda r: -platen_speed(r))
     md = "## Loading rate (flattened disc)\n\n"
     md += brazilian_table(h, dynamic + static, "platen speed (m/s)",
                           lambda r: platen_speed(r) if r["mode"] != "static" else None) + "\n"
@@ -461,9 +472,7 @@ def rate_section(h, runs, figures, save):
         reference = peak_force(static[0])[0]
         within = [platen_speed(r) for r in dynamic
                   if peak_force(r) and abs(peak_force(r)[0] / reference - 1.0) <= QUASI_STATIC_TOLERANCE]
-        md += "Peak force against the static run's: " + ", ".join(
-            f"{platen_speed(r):g} m/s {(peak_force(r)[0] / reference - 1.0) * PERCENT:+.1f}%"
-            for r in dynamic if peak_force(r)) + ".\n"
+        md += against_static(dynamic, reference, lambda r: f"{platen_speed(r):g} m/s") + "\n"
         md += (f"Verdict: quasi-static to within {QUASI_STATIC_TOLERANCE * PERCENT:g}% of the static peak at "
                + (f"{max(within):g} m/s and slower.\n\n" if within else "none of the speeds run.\n\n"))
     draw_platen_forces(h, dynamic, static, lambda r: f"{platen_speed(r):g} m/s", platen_speed, "platen speed (m/s)",
@@ -506,8 +515,7 @@ def damping_share_to_peak(h, run):
 
 
 def damping_section(h, runs, figures, save):
-    static = [r for r in runs if r["mode"] == "static"]
-    dynamic = sorted([r for r in runs if r["mode"] != "static"], key=lambda r: r["eta"])
+    static, dynamic = split_static(runs, lambda r: r["eta"])
     md = "## Mass damping of the platen's ringing (flattened disc)\n\n"
     md += brazilian_table(h, dynamic + static, "η (1/s)", lambda r: r["eta"] if r["mode"] != "static" else None)
     md += ("\n| case | η (1/s) | ringing of the top platen's force to the first crack, RMS (kN/m) "
@@ -521,10 +529,7 @@ def damping_section(h, runs, figures, save):
                f" | {cell(scaled(damping_share_to_peak(h, r), PERCENT), '{:.2g}')} |\n")
     md += "\n"
     if static and peak_force(static[0]):
-        reference = peak_force(static[0])[0]
-        md += "Peak force against the static run's: " + ", ".join(
-            f"η = {r['eta']:g} 1/s {(peak_force(r)[0] / reference - 1.0) * PERCENT:+.1f}%"
-            for r in dynamic if peak_force(r)) + ".\n\n"
+        md += against_static(dynamic, peak_force(static[0])[0], lambda r: f"η = {r['eta']:g} 1/s") + "\n\n"
     draw_platen_forces(h, dynamic, static, lambda r: f"η = {r['eta']:g} 1/s", lambda r: r["eta"],
                        "mass damping η (1/s)", False, "flattened disc against mass damping",
                        os.path.join(figures, "damping.png"), save)

@@ -40,6 +40,16 @@ check_contact_period_resolved() {
   echo "$name: dt_max = $dt s, no contact-period warning"
 }
 
+# Runs the command after LOG (a study), its output in LOG and then on stdout; fails unless it succeeded.
+run_study() {
+  local log=$1
+  shift
+  "$@" > "$log" 2>&1
+  local code=$?
+  cat "$log"
+  [ $code = 0 ] || fail "the study failed (exit status $code)"
+}
+
 # The study's analysis.md has a section whose heading starts with HEADING, and figures/FIGURE exists.
 check_report() {
   local study=$1 heading=$2 figure=$3

@@ -27,11 +27,7 @@ undamped=flattened-700 damped=flattened-700-eta10000
 # damping cannot remove before it starts) does not. About 5 minutes on the shared 2-core machine.
 ringing_fall=2
 
-"$exe" study sensitivity --out "$study" --family damping --blocks 1900 --cases "$undamped,$damped" \
-  > "$work/study.log" 2>&1
-code=$?
-cat "$work/study.log"
-[ $code = 0 ] || fail "the study failed (exit status $code)"
+run_study "$work/study.log" "$exe" study sensitivity --out "$study" --family damping --blocks 1900 --cases "$undamped,$damped"
 
 for c in $undamped $damped; do
   check_run "$c" "$study/$c"

@@ -29,11 +29,7 @@ travel_tolerance=0.01  # the platen's last position is one output interval's tra
 # fall as v^2) does not. About 6 minutes on the shared 2-core machine.
 least_ratio_fall=4
 
-"$exe" study sensitivity --out "$study" --family rate --blocks 1900 --cases "$fast,$middle,$reference" \
-  > "$work/study.log" 2>&1
-code=$?
-cat "$work/study.log"
-[ $code = 0 ] || fail "the study failed (exit status $code)"
+run_study "$work/study.log" "$exe" study sensitivity --out "$study" --family rate --blocks 1900 --cases "$fast,$middle,$reference"
 
 for c in $fast $middle $reference; do
   check_run "$c" "$study/$c"

@@ -46,11 +46,8 @@ stiff_balance_tolerance=0.02
 set_args=(--set "analysis.end_time=$end_time")
 cases=case04-700,case04-1400,case04-1400-kn1E,case04-1400-dt5e-08,case04-1400-tip0.25
 
-"$exe" study sensitivity --out "$study" --blocks 1400 --family mesh,penalty,timestep,slot-tips --cases "$cases" \
-  "${set_args[@]}" > "$work/study.log" 2>&1
-code=$?
-cat "$work/study.log"
-[ $code = 0 ] || fail "the study failed (exit status $code)"
+run_study "$work/study.log" "$exe" study sensitivity --out "$study" --blocks 1400 --family mesh,penalty,timestep,slot-tips --cases "$cases" \
+  "${set_args[@]}"
 
 for c in ${cases//,/ }; do
   grep -q "^| $c |" "$study/study.md" || fail "study.md has no row for $c"

@@ -29,11 +29,7 @@ stiffness_multiple=10  # the family's kn / E
 scene_dt=1e-7          # s: the impact scenes' dt_max
 set_args=(--set "analysis.end_time=$end_time")
 
-"$exe" study sensitivity --out "$study" --blocks 700 --family penalty-theta --cases "$cases" "${set_args[@]}" \
-  > "$work/study.log" 2>&1
-code=$?
-cat "$work/study.log"
-[ $code = 0 ] || fail "the study failed (exit status $code)"
+run_study "$work/study.log" "$exe" study sensitivity --out "$study" --blocks 700 --family penalty-theta --cases "$cases" "${set_args[@]}"
 
 # --status and --report given without --family and --blocks take those the study began with: the
 # same cases, not the full-size study of every family. The checks below read that report.
