@@ -20,7 +20,7 @@ constexpr const char* kDefaultPython = "/usr/bin/python3";
 std::size_t remove_previous_figures(const std::filesystem::path& run_dir) {
   // The names plots/ddafrac_plots.py gives them; it saves each as ".<name>.partial.png" first.
   static const std::regex kRunFigure(
-      R"(\.?(energy|crack_counts|gauges_sigma1|crack_pattern_\d+us)\.png(\.partial\.png)?)");
+      R"(\.?(energy|crack_counts|gauges_sigma1|(crack_pattern|utilisation)_\d+us)\.png(\.partial\.png)?)");
   return common::remove_files_matching(run_dir / "figures", kRunFigure);
 }
 

@@ -190,17 +190,22 @@ def read_vtu(path):
     return points, cells, types, cell_data
 
 
-def draw_pattern(axes, path, limit=None):
-    """Blocks of a snapshot coloured by σ1 (MPa) with the broken joints drawn over them; returns
-    the blocks' collection (for a colour bar)."""
+def draw_pattern(axes, path, limit=None, field="sigma1"):
+    """Blocks of a snapshot coloured by a cell field with the broken joints drawn over them: σ1 (MPa,
+    blue to red about zero up to `limit`, by default its 99th percentile) or joint_utilisation
+    (0 to 1, the strength). Returns the blocks' collection (for a colour bar)."""
     points, cells, types, cell_data = read_vtu(path)
     polygons = [points[c] for c, k in zip(cells, types) if k != VTK_LINE]
     polygon_index = [i for i, k in enumerate(types) if k != VTK_LINE]
-    sigma1 = cell_data["sigma1"][polygon_index] * MEGAPASCAL
-    if limit is None:
-        limit = max(1e-12, np.percentile(np.abs(sigma1), 99))
-    collection = PolyCollection(polygons, array=sigma1, cmap="RdBu_r", clim=(-limit, limit),
-                                edgecolors="face", linewidths=0.2)
+    if field == "sigma1":
+        values = cell_data["sigma1"][polygon_index] * MEGAPASCAL
+        if limit is None:
+            limit = max(1e-12, np.percentile(np.abs(values), 99))
+        colours = {"cmap": "RdBu_r", "clim": (-limit, limit)}
+    else:
+        values = cell_data[field][polygon_index]
+        colours = {"cmap": "magma_r", "clim": (0.0, 1.0)}
+    collection = PolyCollection(polygons, array=values, edgecolors="face", linewidths=0.2, **colours)
     axes.add_collection(collection)
     crack_index = [i for i, k in enumerate(types) if k == VTK_LINE]
     if crack_index:
@@ -216,6 +221,11 @@ def draw_pattern(axes, path, limit=None):
     return collection
 
 
+def time_label(t):
+    """A run's time for a title: µs, or s for a static run's load parameter (t ≥ 0.1 s)."""
+    return f"{t:g} s" if t >= 0.1 else f"{t * MICROSECONDS:.0f} µs"
+
+
 def plot_crack_pattern(snapshot_time, path, out_dir, title):
     """Blocks coloured by σ1 with the broken joints drawn over them."""
     figure, axes = plt.subplots(figsize=(7, 7))
@@ -223,8 +233,24 @@ def plot_crack_pattern(snapshot_time, path, out_dir, title):
     figure.colorbar(collection, ax=axes, shrink=0.8, label="σ1 (MPa, tension positive)")
     axes.set_xlabel("x (m)")
     axes.set_ylabel("y (m)")
-    axes.set_title(f"{title}: cracks over σ1 at t = {snapshot_time * MICROSECONDS:.0f} µs")
+    axes.set_title(f"{title}: cracks over σ1 at t = {time_label(snapshot_time)}")
     save(figure, os.path.join(out_dir, f"crack_pattern_{snapshot_time * MICROSECONDS:06.0f}us.png"))
+
+
+def plot_utilisation(snapshot_time, path, out_dir, title):
+    """Blocks coloured by the utilisation of their intact joints (where the next cracks will come),
+    with the broken joints drawn over them; nothing for snapshots written before the field."""
+    figure, axes = plt.subplots(figsize=(7, 7))
+    try:
+        collection = draw_pattern(axes, path, field="joint_utilisation")
+    except KeyError:
+        plt.close(figure)
+        return
+    figure.colorbar(collection, ax=axes, shrink=0.8, label="max(r1, r2) of the block's intact joints (1: strength)")
+    axes.set_xlabel("x (m)")
+    axes.set_ylabel("y (m)")
+    axes.set_title(f"{title}: joint utilisation at t = {time_label(snapshot_time)}")
+    save(figure, os.path.join(out_dir, f"utilisation_{snapshot_time * MICROSECONDS:06.0f}us.png"))
 
 
 def draw_run(args):
@@ -257,6 +283,7 @@ def draw_run(args):
         for t in wanted:
             snapshot_time, path = min(snapshots, key=lambda s: abs(s[0] - t))
             plot_crack_pattern(snapshot_time, path, out_dir, title)
+            plot_utilisation(snapshot_time, path, out_dir, title)
 
 
 def draw_sweep(args):

@@ -64,24 +64,40 @@ std::vector<JointForce> Engine::joint_forces() const {
   return f;
 }
 
-std::size_t Engine::fracture_check() {
-  auto& js = blocks_.joints;
-  if (js.empty()) return 0;
+std::vector<FailureRatios> Engine::joint_ratios() const {
+  const auto& js = blocks_.joints;
   const std::vector<JointForce> f = joint_forces();
   const auto nj = static_cast<std::int64_t>(js.size());
   std::vector<FailureRatios> ratio(js.size());
-  std::vector<char> breaks(js.size(), 0);
-  // Judged in parallel against the state of the step; nothing is changed until all are judged.
 #pragma omp parallel for schedule(static)
   for (std::int64_t j = 0; j < nj; ++j) {
     const Joint& jt = js[j];
     if (jt.broken || f[j].contacts == 0) continue;
     ratio[j] = failure_ratios(f[j], jt.length, scene_.joint_sets[static_cast<std::size_t>(jt.joint_set)]);
-    breaks[j] = ratio[j].broken() ? 1 : 0;
   }
+  return ratio;
+}
+
+std::vector<double> Engine::joint_utilisation() const {
+  std::vector<double> u(blocks_.block_count(), 0.0);
+  const std::vector<FailureRatios> ratio = joint_ratios();
+  for (std::size_t j = 0; j < ratio.size(); ++j) {
+    const double r = std::max(ratio[j].r1, ratio[j].r2);  // 0 for a broken joint
+    const Joint& jt = blocks_.joints[j];
+    u[static_cast<std::size_t>(jt.block_a)] = std::max(u[static_cast<std::size_t>(jt.block_a)], r);
+    u[static_cast<std::size_t>(jt.block_b)] = std::max(u[static_cast<std::size_t>(jt.block_b)], r);
+  }
+  return u;
+}
+
+std::size_t Engine::fracture_check() {
+  auto& js = blocks_.joints;
+  if (js.empty()) return 0;
+  // Judged against the state of the step; nothing is changed until all are judged.
+  const std::vector<FailureRatios> ratio = joint_ratios();
   std::size_t n = 0;
   for (std::size_t j = 0; j < js.size(); ++j) {
-    if (!breaks[j]) continue;
+    if (!ratio[j].broken()) continue;
     Joint& jt = js[j];
     jt.broken = true;
     jt.failure = ratio[j].type();

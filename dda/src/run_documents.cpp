@@ -295,6 +295,9 @@ std::string vtu_document(const Engine& e) {
   s += "</DataArray>\n<DataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (std::size_t c = 0; c < nb; ++c) s += fmt::format("{:.9g} {:.9g} 0\n", b.velocity[c][kU], b.velocity[c][kV]);
   for (std::size_t c = 0; c < nl; ++c) s += "0 0 0\n";
+  s += "</DataArray>\n<DataArray type=\"Float64\" Name=\"joint_utilisation\" format=\"ascii\">\n";
+  for (const double u : e.joint_utilisation()) s += fmt::format("{:.6g}\n", u);
+  for (std::size_t c = 0; c < nl; ++c) s += "0\n";
   s += "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
   return s;
 }

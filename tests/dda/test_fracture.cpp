@@ -141,6 +141,40 @@ BOOST_AUTO_TEST_CASE(shear_break_under_compression) {
   BOOST_TEST(e.cracks()[0].r1 == 0.0);
 }
 
+// Test 3a: the utilisation map of the VTU snapshots. Two squares, the left one held at its left
+// edge, the right one loaded at its right edge in static mode: in equilibrium the joint carries
+// the load, so both blocks' utilisation is the load over the joint's strength, in tension
+// (P / (σt·l)) and in shear under compression (S / (c·l + N·tanφ)). The joint's forces are measured
+// along the held block's edge while the moment of the shear load turns the loaded block by about
+// 2·S / (kn·l) ≈ 2.4e-4 rad, which mixes normal force into shear at that order (measured: 2.7e-4 of
+// the utilisation; exact in tension); the solver's tolerance (1e-10) and static mode's inertia term
+// (~1e-11 of the stiffness at Δt = 1 s) are far below.
+BOOST_AUTO_TEST_CASE(utilisation_is_the_load_over_the_strength) {
+  const double h = 0.01, sigma_t = 1e6, cohesion = 2e6, phi = 30.0, kn = 1e10;
+  const double tan_phi = std::tan(phi * kPi / 180.0);
+  struct Load {
+    double normal, shear;  // N/m on the right block's right edge: +x pulls the joint open
+    double expected;       // utilisation
+  };
+  const double tension = 0.4 * sigma_t * h, compression = 0.5 * cohesion * h, shear = 0.6 * cohesion * h;
+  for (const Load& load : {Load{tension, 0.0, tension / (sigma_t * h)},
+                           Load{-compression, shear, shear / (cohesion * h + compression * tan_phi)}}) {
+    scene::Scene sc = joint_scene(1.0, kn, sigma_t, cohesion, phi);
+    sc.analysis.mode = scene::Mode::Static;
+    EngineOptions opt;
+    hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
+    for (const double y : {0.0, h}) opt.point_loads.push_back({1, 2 * h, y, 0.5 * load.normal, 0.5 * load.shear});
+    Engine e(sc, two_squares(h), opt);
+    for (int k = 0; k < 4; ++k) e.step();
+    BOOST_REQUIRE(e.cracks().empty());
+    const std::vector<double> u = e.joint_utilisation();
+    BOOST_REQUIRE_EQUAL(u.size(), 2u);
+    BOOST_TEST_MESSAGE("utilisation " << u[0] << ", " << u[1] << " against " << load.expected);
+    BOOST_TEST(u[0] == u[1]);  // one joint, shared by both blocks
+    BOOST_TEST(std::abs(u[0] - load.expected) <= 1e-3 * load.expected);
+  }
+}
+
 // Test 3: both ratios above one in the same step; the type follows the larger one.
 BOOST_AUTO_TEST_CASE(type_follows_the_larger_ratio) {
   scene::JointSet js;

@@ -168,6 +168,10 @@ class Engine {
   const CrackCounts& crack_counts() const { return crack_counts_; }
   /// Current forces of every joint from the contacts of the last accepted step (parallel).
   std::vector<JointForce> joint_forces() const;
+  /// Per block, the largest failure ratio max(r1, r2) of its intact virtual joints in the state of
+  /// the last accepted step (0 where it has none): how near its joints are to breaking, 1 at the
+  /// strength (docs/design.md §5). The VTU snapshots' `joint_utilisation`.
+  std::vector<double> joint_utilisation() const;
 
   /// Gauges of the scene: the block holding each gauge point at t = 0 (checked at construction).
   const std::vector<Index>& gauge_blocks() const { return gauge_blocks_; }
@@ -236,6 +240,9 @@ class Engine {
   /// started from (record_step books their difference from the moved geometry's as residual).
   Energies accept(double dt);
   std::size_t fracture_check();
+  /// Failure ratios of every joint against the current joint forces (zero for broken joints and
+  /// joints without contacts), judged in parallel.
+  std::vector<FailureRatios> joint_ratios() const;
   [[noreturn]] void trouble(const std::string& what) const;
   std::string describe_block(Index b) const;
   std::string describe_contact(Index c) const;
