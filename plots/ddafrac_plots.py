@@ -190,11 +190,17 @@ def read_vtu(path):
     return points, cells, types, cell_data
 
 
-def draw_pattern(axes, path, limit=None, field="sigma1"):
-    """Blocks of a snapshot coloured by a cell field with the broken joints drawn over them: σ1 (MPa,
-    blue to red about zero up to `limit`, by default its 99th percentile) or joint_utilisation
-    (0 to 1, the strength). Returns the blocks' collection (for a colour bar)."""
-    points, cells, types, cell_data = read_vtu(path)
+def draw_pattern(axes, path, limit=None):
+    """Blocks of a snapshot file coloured by σ1 (MPa) with the broken joints drawn over them
+    (draw_snapshot); returns the blocks' collection (for a colour bar)."""
+    return draw_snapshot(axes, read_vtu(path), limit)
+
+
+def draw_snapshot(axes, snapshot, limit=None, field="sigma1"):
+    """Blocks of a snapshot (read_vtu) coloured by a cell field with the broken joints drawn over
+    them: σ1 (MPa, blue to red about zero up to `limit`, by default its 99th percentile) or
+    joint_utilisation (0 to 1, the strength). Returns the blocks' collection (for a colour bar)."""
+    points, cells, types, cell_data = snapshot
     polygons = [points[c] for c, k in zip(cells, types) if k != VTK_LINE]
     polygon_index = [i for i, k in enumerate(types) if k != VTK_LINE]
     if field == "sigma1":
@@ -226,31 +232,29 @@ def time_label(t):
     return f"{t:g} s" if t >= 0.1 else f"{t * MICROSECONDS:.0f} µs"
 
 
-def plot_crack_pattern(snapshot_time, path, out_dir, title):
-    """Blocks coloured by σ1 with the broken joints drawn over them."""
-    figure, axes = plt.subplots(figsize=(7, 7))
-    collection = draw_pattern(axes, path)
-    figure.colorbar(collection, ax=axes, shrink=0.8, label="σ1 (MPa, tension positive)")
-    axes.set_xlabel("x (m)")
-    axes.set_ylabel("y (m)")
-    axes.set_title(f"{title}: cracks over σ1 at t = {time_label(snapshot_time)}")
-    save(figure, os.path.join(out_dir, f"crack_pattern_{snapshot_time * MICROSECONDS:06.0f}us.png"))
+# The pictures of a snapshot at each figure time: the cell field, what the title calls it, the
+# colour bar's label and the file name's stem.
+SNAPSHOT_FIGURES = (
+    ("sigma1", "cracks over σ1", "σ1 (MPa, tension positive)", "crack_pattern"),
+    ("joint_utilisation", "joint utilisation", "max(r1, r2) of the block's intact joints (1: strength)",
+     "utilisation"),
+)
 
 
-def plot_utilisation(snapshot_time, path, out_dir, title):
-    """Blocks coloured by the utilisation of their intact joints (where the next cracks will come),
-    with the broken joints drawn over them; nothing for snapshots written before the field."""
-    figure, axes = plt.subplots(figsize=(7, 7))
-    try:
-        collection = draw_pattern(axes, path, field="joint_utilisation")
-    except KeyError:
-        plt.close(figure)
-        return
-    figure.colorbar(collection, ax=axes, shrink=0.8, label="max(r1, r2) of the block's intact joints (1: strength)")
-    axes.set_xlabel("x (m)")
-    axes.set_ylabel("y (m)")
-    axes.set_title(f"{title}: joint utilisation at t = {time_label(snapshot_time)}")
-    save(figure, os.path.join(out_dir, f"utilisation_{snapshot_time * MICROSECONDS:06.0f}us.png"))
+def plot_snapshot(snapshot_time, path, out_dir, title):
+    """The snapshot's pictures (SNAPSHOT_FIGURES), blocks coloured by the field with the broken joints
+    drawn over them; a field the snapshot does not carry (written before it existed) is skipped."""
+    snapshot = read_vtu(path)
+    for field, what, colour_label, stem in SNAPSHOT_FIGURES:
+        if field not in snapshot[3]:
+            continue
+        figure, axes = plt.subplots(figsize=(7, 7))
+        collection = draw_snapshot(axes, snapshot, field=field)
+        figure.colorbar(collection, ax=axes, shrink=0.8, label=colour_label)
+        axes.set_xlabel("x (m)")
+        axes.set_ylabel("y (m)")
+        axes.set_title(f"{title}: {what} at t = {time_label(snapshot_time)}")
+        save(figure, os.path.join(out_dir, f"{stem}_{snapshot_time * MICROSECONDS:06.0f}us.png"))
 
 
 def draw_run(args):
@@ -282,8 +286,7 @@ def draw_run(args):
         wanted = [float(t) for t in args.times.split(",") if t] if args.times else [snapshots[-1][0]]
         for t in wanted:
             snapshot_time, path = min(snapshots, key=lambda s: abs(s[0] - t))
-            plot_crack_pattern(snapshot_time, path, out_dir, title)
-            plot_utilisation(snapshot_time, path, out_dir, title)
+            plot_snapshot(snapshot_time, path, out_dir, title)
 
 
 def draw_sweep(args):

@@ -82,7 +82,7 @@ std::vector<double> Engine::joint_utilisation() const {
   std::vector<double> u(blocks_.block_count(), 0.0);
   const std::vector<FailureRatios> ratio = joint_ratios();
   for (std::size_t j = 0; j < ratio.size(); ++j) {
-    const double r = std::max(ratio[j].r1, ratio[j].r2);  // 0 for a broken joint
+    const double r = ratio[j].largest();  // 0 for a broken joint
     const Joint& jt = blocks_.joints[j];
     u[static_cast<std::size_t>(jt.block_a)] = std::max(u[static_cast<std::size_t>(jt.block_a)], r);
     u[static_cast<std::size_t>(jt.block_b)] = std::max(u[static_cast<std::size_t>(jt.block_b)], r);

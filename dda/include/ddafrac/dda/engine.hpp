@@ -3,6 +3,7 @@
 // solver and the time-step control into one accepted step at a time. No global state: all of it
 // lives in an Engine object; several engines can run side by side.
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -65,6 +66,7 @@ struct JointForce {
 struct FailureRatios {
   double r1 = 0.0, r2 = 0.0;
   bool broken() const { return r1 > 1.0 || r2 > 1.0; }
+  double largest() const { return std::max(r1, r2); }  // the joint's utilisation, 1 at the strength
   CrackType type() const { return r1 > r2 ? CrackType::Tensile : CrackType::Shear; }
 };
 FailureRatios failure_ratios(const JointForce& f, double length, const scene::JointSet& strength);
