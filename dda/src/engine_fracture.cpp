@@ -64,9 +64,8 @@ std::vector<JointForce> Engine::joint_forces() const {
   return f;
 }
 
-std::vector<FailureRatios> Engine::joint_ratios() const {
+std::vector<FailureRatios> Engine::joint_ratios(const std::vector<JointForce>& f) const {
   const auto& js = blocks_.joints;
-  const std::vector<JointForce> f = joint_forces();
   const auto nj = static_cast<std::int64_t>(js.size());
   std::vector<FailureRatios> ratio(js.size());
 #pragma omp parallel for schedule(static)
@@ -80,7 +79,7 @@ std::vector<FailureRatios> Engine::joint_ratios() const {
 
 std::vector<double> Engine::joint_utilisation() const {
   std::vector<double> u(blocks_.block_count(), 0.0);
-  const std::vector<FailureRatios> ratio = joint_ratios();
+  const std::vector<FailureRatios> ratio = joint_ratios(joint_forces());
   for (std::size_t j = 0; j < ratio.size(); ++j) {
     const double r = ratio[j].largest();  // 0 for a broken joint
     const Joint& jt = blocks_.joints[j];
@@ -94,7 +93,7 @@ std::size_t Engine::fracture_check() {
   auto& js = blocks_.joints;
   if (js.empty()) return 0;
   // Judged against the state of the step; nothing is changed until all are judged.
-  const std::vector<FailureRatios> ratio = joint_ratios();
+  const std::vector<FailureRatios> ratio = joint_ratios(joint_forces());
   std::size_t n = 0;
   for (std::size_t j = 0; j < js.size(); ++j) {
     if (!ratio[j].broken()) continue;
@@ -103,8 +102,9 @@ std::size_t Engine::fracture_check() {
     jt.failure = ratio[j].type();
     CrackEvent ev;
     ev.t = time_;
-    ev.x = 0.5 * (blocks_.vx[jt.vertex_a] + blocks_.vx[jt.vertex_b]);
-    ev.y = 0.5 * (blocks_.vy[jt.vertex_a] + blocks_.vy[jt.vertex_b]);
+    const meshes::Point mid = blocks_.joint_midpoint(jt);
+    ev.x = mid.x;
+    ev.y = mid.y;
     ev.type = jt.failure;
     ev.joint = static_cast<Index>(j);
     ev.r1 = ratio[j].r1;

@@ -89,6 +89,10 @@ struct BlockSystem {
   std::size_t vertex_count() const { return vx.size(); }
   Index begin(std::size_t b) const { return vertex_offsets[b]; }
   Index end(std::size_t b) const { return vertex_offsets[b + 1]; }
+  /// Midpoint of joint j's edge (block_a's side), m.
+  meshes::Point joint_midpoint(const Joint& j) const {
+    return {0.5 * (vx[j.vertex_a] + vx[j.vertex_b]), 0.5 * (vy[j.vertex_a] + vy[j.vertex_b])};
+  }
 };
 
 /// Builds blocks from the mesh cells, materials from the scene, anchors for fixed and

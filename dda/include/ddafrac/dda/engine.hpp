@@ -170,6 +170,9 @@ class Engine {
   const CrackCounts& crack_counts() const { return crack_counts_; }
   /// Current forces of every joint from the contacts of the last accepted step (parallel).
   std::vector<JointForce> joint_forces() const;
+  /// Failure ratios of every joint under the forces `f` of joint_forces() (zero for broken joints
+  /// and joints without contacts), judged in parallel: what the fracture check breaks on.
+  std::vector<FailureRatios> joint_ratios(const std::vector<JointForce>& f) const;
   /// Per block, the largest failure ratio max(r1, r2) of its intact virtual joints in the state of
   /// the last accepted step (0 where it has none): how near its joints are to breaking, 1 at the
   /// strength (docs/design.md §5). The VTU snapshots' `joint_utilisation`.
@@ -242,9 +245,6 @@ class Engine {
   /// started from (record_step books their difference from the moved geometry's as residual).
   Energies accept(double dt);
   std::size_t fracture_check();
-  /// Failure ratios of every joint against the current joint forces (zero for broken joints and
-  /// joints without contacts), judged in parallel.
-  std::vector<FailureRatios> joint_ratios() const;
   [[noreturn]] void trouble(const std::string& what) const;
   std::string describe_block(Index b) const;
   std::string describe_contact(Index c) const;
