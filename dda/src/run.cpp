@@ -30,7 +30,7 @@ void serialize(Archive& a, Snapshot& s, unsigned) {
 
 namespace {
 
-/// The run directory's files besides the snapshots (vtk/snapshot_NNNNNN.vtu).
+/// The run directory's files besides the snapshots (vtk/snapshot_NNNNNN.vtu, joints/joints_NNNNNN.csv).
 const char* const kRunFiles[] = {"summary.json",        "history.csv",  "cracks.csv", "crack_intervals.csv",
                                  "gauges.csv",          "loading.csv",  "run.pvd",    "checkpoint.bin",
                                  "scene.resolved.toml", "fragments.csv"};
@@ -98,12 +98,16 @@ RunLog read_run_log(const std::string& bytes) {
   return log;
 }
 
+/// Snapshot k's files, relative to the run directory: the VTU and its joint table.
+std::string snapshot_file(std::size_t k) { return fmt::format("vtk/snapshot_{:06d}.vtu", k); }
+std::string joint_table_file(std::size_t k) { return fmt::format("joints/joints_{:06d}.csv", k); }
+
 /// Removes the snapshots numbered `first` and after: a resumed run writes them again.
-void remove_snapshots_from(const fs::path& vtk, std::size_t first) {
+void remove_snapshots_from(const fs::path& dir, std::size_t first) {
   std::error_code error;
   for (std::size_t k = first;; ++k) {
-    const fs::path file = vtk / fmt::format("snapshot_{:06d}.vtu", k);
-    if (!fs::remove(file, error)) break;
+    fs::remove(dir / joint_table_file(k), error);
+    if (!fs::remove(dir / snapshot_file(k), error)) break;
   }
 }
 
@@ -117,7 +121,8 @@ std::size_t remove_previous_run(const fs::path& dir) {
       names += (names.empty() ? "" : "|") + std::regex_replace(any.string(), std::regex(R"(\.)"), R"(\.)");
   }
   return common::remove_files_matching(dir, std::regex(names)) +
-         common::remove_files_matching(dir / "vtk", std::regex(R"(\.?snapshot_\d{6}(\.partial)?\.vtu)"));
+         common::remove_files_matching(dir / "vtk", std::regex(R"(\.?snapshot_\d{6}(\.partial)?\.vtu)")) +
+         common::remove_files_matching(dir / "joints", std::regex(R"(\.?joints_\d{6}(\.partial)?\.csv)"));
 }
 
 RunResult run_simulation(Engine& engine, const RunOptions& o) {
@@ -125,7 +130,9 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
   RunResult r;
   int current_threads = 0;  // as returned by o.between_steps
   fs::create_directories(o.out_dir);
+  const bool joint_tables = o.vtk && !engine.blocks().joints.empty();
   if (o.vtk) fs::create_directories(o.out_dir / "vtk");
+  if (joint_tables) fs::create_directories(o.out_dir / "joints");
   const auto& an = engine.scene().analysis;
   const double end = an.end_time;
   const double interval = an.output_interval > 0.0 ? an.output_interval : end;
@@ -147,7 +154,7 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
     engine.restore_carried_state(o.resume->engine);
     log = read_run_log(o.resume->run_log);
     log.resumes.push_back({o.resume->step, o.resume->time});
-    remove_snapshots_from(o.out_dir / "vtk", log.snapshots.size());
+    remove_snapshots_from(o.out_dir, log.snapshots.size());
   }
   double last_checkpoint = t0;
   auto checkpoint = [&] {
@@ -206,7 +213,9 @@ RunResult run_simulation(Engine& engine, const RunOptions& o) {
     if (!engine.blocks().joints.empty())
       ddafrac::common::write_whole_text(o.out_dir / "fragments.csv", fragments_document(engine));
     if (snapshot && o.vtk) {
-      const std::string name = fmt::format("vtk/snapshot_{:06d}.vtu", log.snapshots.size());
+      const std::string name = snapshot_file(log.snapshots.size());
+      if (joint_tables)
+        ddafrac::common::write_whole_text(o.out_dir / joint_table_file(log.snapshots.size()), joints_document(engine));
       ddafrac::common::write_whole_text(o.out_dir / name, vtu_document(engine));
       log.snapshots.push_back({engine.time(), name});
       ddafrac::common::write_whole_text(o.out_dir / "run.pvd", pvd_document(log.snapshots));

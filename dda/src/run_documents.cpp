@@ -302,4 +302,25 @@ std::string vtu_document(const Engine& e) {
   return s;
 }
 
+std::string joints_document(const Engine& e) {
+  const std::vector<Joint>& joints = e.blocks().joints;
+  const std::vector<JointForce> f = e.joint_forces();
+  const std::vector<FailureRatios> ratio = e.joint_ratios(f);
+  std::vector<std::size_t> carrying;
+  for (std::size_t j = 0; j < joints.size(); ++j)
+    if (!joints[j].broken && f[j].contacts > 0) carrying.push_back(j);
+  std::stable_sort(carrying.begin(), carrying.end(),
+                   [&](std::size_t i, std::size_t j) { return ratio[i].largest() > ratio[j].largest(); });
+  std::string s = "t,joint,block_a,block_b,x,y,length,normal_force,shear_force,r1,r2,utilisation\n";
+  s.reserve(s.size() + 160 * carrying.size());
+  for (const std::size_t j : carrying) {
+    const Joint& jt = joints[j];
+    const meshes::Point mid = e.blocks().joint_midpoint(jt);
+    s += fmt::format("{:.17g},{},{},{},{:.12g},{:.12g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", e.time(), j,
+                     jt.block_a, jt.block_b, mid.x, mid.y, jt.length, f[j].normal, f[j].shear, ratio[j].r1, ratio[j].r2,
+                     ratio[j].largest());
+  }
+  return s;
+}
+
 }  // namespace ddafrac::dda

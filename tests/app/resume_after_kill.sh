@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # A run killed outright (SIGKILL: no chance to write anything) and resumed from its last
 # checkpoint, on another thread count, finishes with the files of an uninterrupted run, byte for
-# byte (history.csv, cracks.csv, gauges.csv, loading.csv, crack_intervals.csv, run.pvd and every
-# VTU snapshot); so does a run stopped at --max-steps and resumed. A resume refuses a changed
+# byte (history.csv, cracks.csv, gauges.csv, loading.csv, crack_intervals.csv, run.pvd, every
+# VTU snapshot and joint table); so does a run stopped at --max-steps and resumed. A resume refuses a changed
 # scene, options that would change the run, and a directory without a checkpoint.
 # Usage: resume_after_kill.sh DDAFRAC WORK_DIR   (runs the built-in default scene)
 set -u

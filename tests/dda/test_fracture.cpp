@@ -7,12 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "ddafrac/common/angles.hpp"
 #include "ddafrac/dda/engine.hpp"
+#include "ddafrac/dda/run.hpp"
 #include "ddafrac/dda/synthetic.hpp"
 #include "support.hpp"
 
@@ -51,6 +53,24 @@ meshes::Mesh two_squares(double h) {
   m.cell_offsets = {0, 4, 8};
   m.cell_body = {0, 0};
   return m;
+}
+
+/// The loads and ratios of the one row of a joint table (joints_document) with a single joint.
+struct JointTableRow {
+  double normal = 0.0, shear = 0.0, r1 = 0.0, r2 = 0.0, utilisation = 0.0;
+};
+JointTableRow only_joint_row(const std::string& table) {
+  std::istringstream in(table);
+  std::string header, line, rest;
+  std::getline(in, header);
+  BOOST_REQUIRE(std::getline(in, line));
+  BOOST_REQUIRE(!std::getline(in, rest));
+  BOOST_REQUIRE_EQUAL(header, "t,joint,block_a,block_b,x,y,length,normal_force,shear_force,r1,r2,utilisation");
+  std::vector<double> v;
+  std::istringstream fields(line);
+  for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
+  BOOST_REQUIRE_EQUAL(v.size(), 12u);
+  return {v[7], v[8], v[9], v[10], v[11]};
 }
 
 /// Anchors on the four corners of a block moving at (vx, vy).
@@ -148,7 +168,8 @@ BOOST_AUTO_TEST_CASE(shear_break_under_compression) {
 // along the held block's edge while the moment of the shear load turns the loaded block by about
 // 2·S / (kn·l) ≈ 2.4e-4 rad, which mixes normal force into shear at that order (measured: 2.7e-4 of
 // the utilisation; exact in tension); the solver's tolerance (1e-10) and static mode's inertia term
-// (~1e-11 of the stiffness at Δt = 1 s) are far below.
+// (~1e-11 of the stiffness at Δt = 1 s) are far below. The joint table written beside each
+// snapshot (joints_document) gives that joint's forces, the applied loads, and the same ratio.
 BOOST_AUTO_TEST_CASE(utilisation_is_the_load_over_the_strength) {
   const double h = 0.01, sigma_t = 1e6, cohesion = 2e6, phi = 30.0, kn = 1e10;
   const double tan_phi = std::tan(phi * kPi / 180.0);
@@ -172,6 +193,15 @@ BOOST_AUTO_TEST_CASE(utilisation_is_the_load_over_the_strength) {
     BOOST_TEST_MESSAGE("utilisation " << u[0] << ", " << u[1] << " against " << load.expected);
     BOOST_TEST(u[0] == u[1]);  // one joint, shared by both blocks
     BOOST_TEST(std::abs(u[0] - load.expected) <= 1e-3 * load.expected);
+    // The snapshots' joint table: its one row is that joint, with the loads that make the ratios.
+    const JointTableRow row = only_joint_row(joints_document(e));
+    BOOST_TEST_MESSAGE("joint table: f_n " << row.normal << ", f_s " << row.shear << " N/m, r1 " << row.r1 << ", r2 "
+                                           << row.r2 << ", utilisation " << row.utilisation);
+    BOOST_TEST(row.utilisation == std::max(row.r1, row.r2));
+    BOOST_TEST(std::abs(row.utilisation - u[0]) <= 1e-6 * u[0]);  // the table's 9 digits
+    const double scale = std::abs(load.normal) + load.shear;      // N/m; the turn above mixes the two at 2.4e-4
+    BOOST_TEST(std::abs(row.normal - load.normal) <= 1e-3 * scale);
+    BOOST_TEST(std::abs(std::abs(row.shear) - load.shear) <= 1e-3 * scale);
   }
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // A whole run: an Engine driven (drive.hpp) to the scene's end time, writing the run
-// directory: summary.json, history.csv, vtk/*.vtu + run.pvd, scene.resolved.toml, and
+// directory: summary.json, history.csv, vtk/*.vtu + run.pvd, joints/*.csv, scene.resolved.toml, and
 // checkpoint.bin while the run is unfinished. Every file is written whole (temporary name, then
 // rename), so an interrupted or failed run leaves valid files, and a checkpointed one can be
 // resumed.
@@ -94,5 +94,13 @@ RunResult run_simulation(Engine& engine, const RunOptions& options);
 /// body (-1 on lines), stress, sigma1, sigma3, velocity, joint_utilisation (Engine::
 /// joint_utilisation; 0 on lines) and crack_type (0 blocks, 1 tensile, 2 shear). ASCII.
 std::string vtu_document(const Engine& engine);
+
+/// The joint table written beside each snapshot (joints/joints_NNNNNN.csv, NNNNNN the
+/// snapshot's number) in scenes with virtual joints: every intact joint that carries contacts,
+/// the most loaded first (by utilisation, then joint number). Columns: t (s), joint, block_a,
+/// block_b, x, y (midpoint, m), length (m), normal_force (N/m, tension positive), shear_force
+/// (N/m, along node_a -> node_b, on block_a), r1, r2 (FailureRatios: 1 at the strength) and
+/// utilisation = max(r1, r2): the joint-level view of the snapshots' joint_utilisation.
+std::string joints_document(const Engine& engine);
 
 }  // namespace ddafrac::dda
