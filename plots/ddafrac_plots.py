@@ -32,6 +32,7 @@ MEGAPASCAL = 1e-6  # MPa per Pa
 DPI = 150
 VTK_LINE = 3
 CRACK_COLOURS = {1: "black", 2: "tab:blue"}  # crack_type 1 = tensile, 2 = shear
+NO_JOINTS_GREY = "0.8"  # matplotlib grey level of blocks without virtual joints in the utilisation map
 CRACK_NAMES = {1: "tensile", 2: "shear"}
 
 
@@ -199,7 +200,7 @@ def draw_pattern(axes, path, limit=None):
 def draw_snapshot(axes, snapshot, limit=None, field="sigma1"):
     """Blocks of a snapshot (read_vtu) coloured by a cell field with the broken joints drawn over
     them: σ1 (MPa, blue to red about zero up to `limit`, by default its 99th percentile) or
-    joint_utilisation (0 to 1, the strength). Returns the blocks' collection (for a colour bar)."""
+    joint_utilisation (0 to 1, the strength; grey where a block has no virtual joints). Returns the blocks' collection (for a colour bar)."""
     points, cells, types, cell_data = snapshot
     polygons = [points[c] for c, k in zip(cells, types) if k != VTK_LINE]
     polygon_index = [i for i, k in enumerate(types) if k != VTK_LINE]
@@ -209,8 +210,11 @@ def draw_snapshot(axes, snapshot, limit=None, field="sigma1"):
             limit = max(1e-12, np.percentile(np.abs(values), 99))
         colours = {"cmap": "RdBu_r", "clim": (-limit, limit)}
     else:
-        values = cell_data[field][polygon_index]
-        colours = {"cmap": "magma_r", "clim": (0.0, 1.0)}
+        # A block without virtual joints (a platen) has no ratio: negative, drawn grey.
+        values = np.ma.masked_less(cell_data[field][polygon_index], 0.0)
+        cmap = plt.get_cmap("magma_r").copy()
+        cmap.set_bad(NO_JOINTS_GREY)
+        colours = {"cmap": cmap, "clim": (0.0, 1.0)}
     collection = PolyCollection(polygons, array=values, edgecolors="face", linewidths=0.2, **colours)
     axes.add_collection(collection)
     crack_index = [i for i, k in enumerate(types) if k == VTK_LINE]

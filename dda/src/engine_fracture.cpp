@@ -78,10 +78,10 @@ std::vector<FailureRatios> Engine::joint_ratios(const std::vector<JointForce>& f
 }
 
 std::vector<double> Engine::joint_utilisation() const {
-  std::vector<double> u(blocks_.block_count(), 0.0);
+  std::vector<double> u(blocks_.block_count(), kNoVirtualJoints);
   const std::vector<FailureRatios> ratio = joint_ratios(joint_forces());
   for (std::size_t j = 0; j < ratio.size(); ++j) {
-    const double r = ratio[j].largest();  // 0 for a broken joint
+    const double r = ratio[j].largest();  // 0 for a broken joint: its blocks had joints
     const Joint& jt = blocks_.joints[j];
     u[static_cast<std::size_t>(jt.block_a)] = std::max(u[static_cast<std::size_t>(jt.block_a)], r);
     u[static_cast<std::size_t>(jt.block_b)] = std::max(u[static_cast<std::size_t>(jt.block_b)], r);

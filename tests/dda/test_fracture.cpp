@@ -205,6 +205,29 @@ BOOST_AUTO_TEST_CASE(utilisation_is_the_load_over_the_strength) {
   }
 }
 
+// Test 3b: a block without virtual joints (a platen) has no utilisation: kNoVirtualJoints, which
+// the pictures draw grey, not 0 (which would read as an unloaded joint); a block whose joints
+// carry nothing is at 0.
+BOOST_AUTO_TEST_CASE(a_block_without_joints_has_no_utilisation) {
+  const double h = 0.01;
+  scene::Scene sc = joint_scene(1e-6, 1e10, 1e6, 1e6, 30.0);
+  sc.bodies.push_back(testing::body("platen"));
+  meshes::Mesh m = two_squares(h);
+  m.body_names.push_back("platen");
+  const double y0 = 2 * h;  // a square above the pair, apart from it
+  for (const auto& p : {meshes::Point{0, y0}, {h, y0}, {h, y0 + h}, {0, y0 + h}}) m.nodes.push_back(p);
+  for (meshes::Index k = 6; k < 10; ++k) m.cell_nodes.push_back(k);
+  m.cell_offsets.push_back(12);
+  m.cell_body.push_back(1);
+  Engine e(sc, m, EngineOptions{});
+  e.step();
+  const std::vector<double> u = e.joint_utilisation();
+  BOOST_REQUIRE_EQUAL(u.size(), 3u);
+  BOOST_TEST(u[0] == 0.0);  // free and unloaded: the joint carries nothing
+  BOOST_TEST(u[1] == 0.0);
+  BOOST_TEST(u[2] == Engine::kNoVirtualJoints);
+}
+
 // Test 3: both ratios above one in the same step; the type follows the larger one.
 BOOST_AUTO_TEST_CASE(type_follows_the_larger_ratio) {
   scene::JointSet js;

@@ -174,9 +174,12 @@ class Engine {
   /// and joints without contacts), judged in parallel: what the fracture check breaks on.
   std::vector<FailureRatios> joint_ratios(const std::vector<JointForce>& f) const;
   /// Per block, the largest failure ratio max(r1, r2) of its intact virtual joints in the state of
-  /// the last accepted step (0 where it has none): how near its joints are to breaking, 1 at the
-  /// strength (docs/design.md §5). The VTU snapshots' `joint_utilisation`.
+  /// the last accepted step (0 where all have broken, kNoVirtualJoints on a block that never had
+  /// any, as a platen): how near its joints are to breaking, 1 at the strength (docs/design.md §5).
+  /// The VTU snapshots' `joint_utilisation`.
   std::vector<double> joint_utilisation() const;
+  /// joint_utilisation() of a block without virtual joints: no ratio, so outside [0, ∞).
+  static constexpr double kNoVirtualJoints = -1.0;
 
   /// Gauges of the scene: the block holding each gauge point at t = 0 (checked at construction).
   const std::vector<Index>& gauge_blocks() const { return gauge_blocks_; }

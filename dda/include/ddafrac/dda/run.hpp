@@ -92,7 +92,8 @@ RunResult run_simulation(Engine& engine, const RunOptions& options);
 /// VTK XML unstructured grid of the blocks (polygons, VTK type 7) followed by the joints broken
 /// by the fracture check (lines, VTK type 3, between block_a's two joint vertices): cell data
 /// body (-1 on lines), stress, sigma1, sigma3, velocity, joint_utilisation (Engine::
-/// joint_utilisation; 0 on lines) and crack_type (0 blocks, 1 tensile, 2 shear). ASCII.
+/// joint_utilisation: -1 on blocks without virtual joints, 0 on lines) and crack_type (0 blocks, 1 tensile, 2 shear).
+/// ASCII.
 std::string vtu_document(const Engine& engine);
 
 /// The joint table written beside each snapshot (joints/joints_NNNNNN.csv, NNNNNN the
