@@ -26,6 +26,25 @@ FailureRatios failure_ratios(const JointForce& f, double length, const scene::Jo
   return r;
 }
 
+JointForce stress_traction(const BlockSystem& blocks, const Joint& j) {
+  double tx = blocks.vx[j.vertex_b] - blocks.vx[j.vertex_a], ty = blocks.vy[j.vertex_b] - blocks.vy[j.vertex_a];
+  const double l = std::hypot(tx, ty);
+  tx /= l;
+  ty /= l;
+  // Outward from block_a: away from its centroid (its blocks are convex).
+  const meshes::Point mid = blocks.joint_midpoint(j);
+  const PolygonIntegrals& a = blocks.geometry[static_cast<std::size_t>(j.block_a)];
+  const double sign = ty * (mid.x - a.cx) - tx * (mid.y - a.cy) >= 0.0 ? 1.0 : -1.0;
+  const double nx = sign * ty, ny = -sign * tx;
+  const Vec3 s = 0.5 * (blocks.stress[static_cast<std::size_t>(j.block_a)] +
+                        blocks.stress[static_cast<std::size_t>(j.block_b)]);  // (σxx, σyy, τxy)
+  const double fx = (s[0] * nx + s[2] * ny) * j.length, fy = (s[2] * nx + s[1] * ny) * j.length;
+  JointForce f;
+  f.normal = fx * nx + fy * ny;
+  f.shear = fx * tx + fy * ty;
+  return f;
+}
+
 std::vector<JointForce> Engine::joint_forces() const {
   const auto& js = blocks_.joints;
   const auto& cs = set_.contacts;

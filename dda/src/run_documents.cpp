@@ -311,14 +311,17 @@ std::string joints_document(const Engine& e) {
     if (!joints[j].broken && f[j].contacts > 0) carrying.push_back(j);
   std::stable_sort(carrying.begin(), carrying.end(),
                    [&](std::size_t i, std::size_t j) { return ratio[i].largest() > ratio[j].largest(); });
-  std::string s = "t,joint,block_a,block_b,x,y,length,normal_force,shear_force,r1,r2,utilisation\n";
-  s.reserve(s.size() + 160 * carrying.size());
+  std::string s =
+      "t,joint,block_a,block_b,x,y,length,normal_force,shear_force,r1,r2,utilisation,stress_normal_force,"
+      "stress_shear_force\n";
+  s.reserve(s.size() + 200 * carrying.size());
   for (const std::size_t j : carrying) {
     const Joint& jt = joints[j];
     const meshes::Point mid = e.blocks().joint_midpoint(jt);
-    s += fmt::format("{:.17g},{},{},{},{:.12g},{:.12g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", e.time(), j,
-                     jt.block_a, jt.block_b, mid.x, mid.y, jt.length, f[j].normal, f[j].shear, ratio[j].r1, ratio[j].r2,
-                     ratio[j].largest());
+    const JointForce traction = stress_traction(e.blocks(), jt);
+    s += fmt::format("{:.17g},{},{},{},{:.12g},{:.12g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n",
+                     e.time(), j, jt.block_a, jt.block_b, mid.x, mid.y, jt.length, f[j].normal, f[j].shear, ratio[j].r1,
+                     ratio[j].r2, ratio[j].largest(), traction.normal, traction.shear);
   }
   return s;
 }

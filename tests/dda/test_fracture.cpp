@@ -58,6 +58,7 @@ meshes::Mesh two_squares(double h) {
 /// The loads and ratios of the one row of a joint table (joints_document) with a single joint.
 struct JointTableRow {
   double normal = 0.0, shear = 0.0, r1 = 0.0, r2 = 0.0, utilisation = 0.0;
+  double stress_normal = 0.0, stress_shear = 0.0;  // the load the blocks' stress puts on the joint
 };
 JointTableRow only_joint_row(const std::string& table) {
   std::istringstream in(table);
@@ -65,12 +66,14 @@ JointTableRow only_joint_row(const std::string& table) {
   std::getline(in, header);
   BOOST_REQUIRE(std::getline(in, line));
   BOOST_REQUIRE(!std::getline(in, rest));
-  BOOST_REQUIRE_EQUAL(header, "t,joint,block_a,block_b,x,y,length,normal_force,shear_force,r1,r2,utilisation");
+  BOOST_REQUIRE_EQUAL(header,
+                      "t,joint,block_a,block_b,x,y,length,normal_force,shear_force,r1,r2,utilisation,"
+                      "stress_normal_force,stress_shear_force");
   std::vector<double> v;
   std::istringstream fields(line);
   for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
-  BOOST_REQUIRE_EQUAL(v.size(), 12u);
-  return {v[7], v[8], v[9], v[10], v[11]};
+  BOOST_REQUIRE_EQUAL(v.size(), 14u);
+  return {v[7], v[8], v[9], v[10], v[11], v[12], v[13]};
 }
 
 /// Anchors on the four corners of a block moving at (vx, vy).
@@ -169,7 +172,8 @@ BOOST_AUTO_TEST_CASE(shear_break_under_compression) {
 // 2·S / (kn·l) ≈ 2.4e-4 rad, which mixes normal force into shear at that order (measured: 2.7e-4 of
 // the utilisation; exact in tension); the solver's tolerance (1e-10) and static mode's inertia term
 // (~1e-11 of the stiffness at Δt = 1 s) are far below. The joint table written beside each
-// snapshot (joints_document) gives that joint's forces, the applied loads, and the same ratio.
+// snapshot (joints_document) gives that joint's forces, the applied loads, and the same ratio;
+// its blocks' stress puts the same load on it (stress_traction): nothing else carries load here.
 BOOST_AUTO_TEST_CASE(utilisation_is_the_load_over_the_strength) {
   const double h = 0.01, sigma_t = 1e6, cohesion = 2e6, phi = 30.0, kn = 1e10;
   const double tan_phi = std::tan(phi * kPi / 180.0);
@@ -202,6 +206,10 @@ BOOST_AUTO_TEST_CASE(utilisation_is_the_load_over_the_strength) {
     const double scale = std::abs(load.normal) + load.shear;      // N/m; the turn above mixes the two at 2.4e-4
     BOOST_TEST(std::abs(row.normal - load.normal) <= 1e-3 * scale);
     BOOST_TEST(std::abs(std::abs(row.shear) - load.shear) <= 1e-3 * scale);
+    BOOST_TEST_MESSAGE("blocks' stress on the joint: f_n " << row.stress_normal << ", f_s " << row.stress_shear
+                                                           << " N/m");
+    BOOST_TEST(std::abs(row.stress_normal - row.normal) <= 1e-3 * scale);
+    BOOST_TEST(std::abs(row.stress_shear - row.shear) <= 1e-3 * scale);
   }
 }
 

@@ -60,6 +60,13 @@ struct JointForce {
   int contacts = 0;
 };
 
+/// The load the blocks' stress puts on joint j (N/m, as JointForce; contacts = 0): the mean
+/// stress σ of its two blocks on block_a's face, F = σ·n·l with n block_a's outward normal;
+/// normal = n·F (tension positive), shear = t·F with t along node_a -> node_b. In a continuum it
+/// is the joint's load: the joint's own forces differ from it by what other contacts carry past
+/// the joint (docs/design.md §5).
+JointForce stress_traction(const BlockSystem& blocks, const Joint& j);
+
 /// Failure ratios of a joint: r1 = f_n/(σt·l) (tension, 0 under compression),
 /// r2 = |f_s|/(c·l + f_n,c·tanφ) with f_n,c the compressive normal force. A zero strength
 /// under a nonzero load gives +inf.

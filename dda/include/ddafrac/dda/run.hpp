@@ -100,8 +100,10 @@ std::string vtu_document(const Engine& engine);
 /// snapshot's number) in scenes with virtual joints: every intact joint that carries contacts,
 /// the most loaded first (by utilisation, then joint number). Columns: t (s), joint, block_a,
 /// block_b, x, y (midpoint, m), length (m), normal_force (N/m, tension positive), shear_force
-/// (N/m, along node_a -> node_b, on block_a), r1, r2 (FailureRatios: 1 at the strength) and
-/// utilisation = max(r1, r2): the joint-level view of the snapshots' joint_utilisation.
+/// (N/m, along node_a -> node_b, on block_a), r1, r2 (FailureRatios: 1 at the strength),
+/// utilisation = max(r1, r2): the joint-level view of the snapshots' joint_utilisation; and
+/// stress_normal_force, stress_shear_force: the load its blocks' stress puts on it
+/// (stress_traction), which the joint's forces equal where nothing else carries load past it.
 std::string joints_document(const Engine& engine);
 
 }  // namespace ddafrac::dda
