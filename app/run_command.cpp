@@ -332,6 +332,14 @@ void run_run(const RunArguments& given) {
              st.solves ? static_cast<double>(st.cg_total) / static_cast<double>(st.solves) : 0.0, st.cg_max);
   const auto& cc = engine->crack_counts();
   fmt::print("cracks: {} ({} tensile, {} shear)\n", cc.total, cc.tensile, cc.shear);
+  if (!engine->blocks().joints.empty()) {
+    const dda::JointLoadShare share = dda::joint_load_share(engine->blocks(), engine->joint_forces());
+    if (share.joints > 0)
+      fmt::print(
+          "virtual joints carry {:.2f} (normal) and {:.2f} (shear) of the load their blocks' stress puts on them "
+          "(summary.json joint_load_share; 1: all of it)\n",
+          share.normal, share.shear);
+  }
   if (st.missed_contacts > 0)
     fmt::print(
         stderr,

@@ -45,6 +45,24 @@ JointForce stress_traction(const BlockSystem& blocks, const Joint& j) {
   return f;
 }
 
+JointLoadShare joint_load_share(const BlockSystem& blocks, const std::vector<JointForce>& forces) {
+  double fn_load = 0.0, load_n2 = 0.0, fs_load = 0.0, load_s2 = 0.0;  // (N/m)²
+  JointLoadShare share;
+  for (std::size_t j = 0; j < blocks.joints.size(); ++j) {
+    const Joint& jt = blocks.joints[j];
+    if (jt.broken || forces[j].contacts == 0) continue;
+    const JointForce load = stress_traction(blocks, jt);
+    fn_load += forces[j].normal * load.normal;
+    load_n2 += load.normal * load.normal;
+    fs_load += forces[j].shear * load.shear;
+    load_s2 += load.shear * load.shear;
+    ++share.joints;
+  }
+  if (load_n2 > 0.0) share.normal = fn_load / load_n2;
+  if (load_s2 > 0.0) share.shear = fs_load / load_s2;
+  return share;
+}
+
 std::vector<JointForce> Engine::joint_forces() const {
   const auto& js = blocks_.joints;
   const auto& cs = set_.contacts;

@@ -241,6 +241,17 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
   j["cracks"] = {
       {"total", cc.total}, {"tensile", cc.tensile}, {"shear", cc.shear}, {"interval", sc.output.crack_interval}};
   j["crack_metrics"] = crack_metrics_json(e);
+  if (!e.blocks().joints.empty()) {
+    const JointLoadShare share = joint_load_share(e.blocks(), e.joint_forces());
+    j["joint_load_share"] = {
+        {"normal", share.normal},
+        {"shear", share.shear},
+        {"joints", share.joints},
+        {"definition",
+         "least-squares slope of the intact joints' forces on the load their blocks' mean stress puts on them "
+         "(joints/*.csv stress_*_force): 1 where the joints carry their blocks' load, below 1 where other contacts "
+         "carry part of it past them"}};
+  }
   j["loading"] = loading;
   j["exit"] = {{"status", r.exit_status}, {"reason", r.reason}, {"message", r.message}};
   return j;

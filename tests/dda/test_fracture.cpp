@@ -210,6 +210,11 @@ BOOST_AUTO_TEST_CASE(utilisation_is_the_load_over_the_strength) {
                                                            << " N/m");
     BOOST_TEST(std::abs(row.stress_normal - row.normal) <= 1e-3 * scale);
     BOOST_TEST(std::abs(row.stress_shear - row.shear) <= 1e-3 * scale);
+    // One joint, nothing else in contact: it carries all of its blocks' load.
+    const JointLoadShare share = joint_load_share(e.blocks(), e.joint_forces());
+    BOOST_TEST(share.joints == 1);
+    BOOST_TEST(std::abs(share.normal - 1.0) <= 1e-3 * scale / std::abs(load.normal));
+    if (load.shear > 0.0) BOOST_TEST(std::abs(share.shear - 1.0) <= 1e-3 * scale / load.shear);
   }
 }
 

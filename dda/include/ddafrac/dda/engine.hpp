@@ -4,6 +4,7 @@
 // lives in an Engine object; several engines can run side by side.
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -66,6 +67,19 @@ struct JointForce {
 /// is the joint's load: the joint's own forces differ from it by what other contacts carry past
 /// the joint (docs/design.md §5).
 JointForce stress_traction(const BlockSystem& blocks, const Joint& j);
+
+/// How much of the load their blocks' stress puts on the intact virtual joints (stress_traction)
+/// the joints carry themselves: the least-squares slope of their forces on those loads over every
+/// intact joint that carries contacts, Σ f·F / Σ F², normal and shear apart. 1 where the joints
+/// alone carry their blocks' load; below 1, other contacts (the node contacts of an intact body)
+/// carry part of it past the joints, and the fracture criterion judges less than the blocks'
+/// stress says (docs/design.md §5). NaN where no such joint is loaded.
+struct JointLoadShare {
+  double normal = std::numeric_limits<double>::quiet_NaN();
+  double shear = std::numeric_limits<double>::quiet_NaN();
+  long joints = 0;  // intact joints carrying contacts
+};
+JointLoadShare joint_load_share(const BlockSystem& blocks, const std::vector<JointForce>& forces);
 
 /// Failure ratios of a joint: r1 = f_n/(σt·l) (tension, 0 under compression),
 /// r2 = |f_s|/(c·l + f_n,c·tanφ) with f_n,c the compressive normal force. A zero strength
