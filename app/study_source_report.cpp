@@ -64,7 +64,7 @@ TableRow table_row(const StudyCase& c) {
                                                         "see its run.log)",
                                                         c.run.exit_code)
                                                   : std::string("not run");
-    return {fmt::format("| {} | {} | {} |{}\n", case_cell(c), c.series, state, std::string(14, '|'))};
+    return {fmt::format("| {} | {} | {} |{}\n", case_cell(c), c.series, state, std::string(15, '|'))};
   }
   const bool pseudo_time = s.contains("scene") && s["scene"].value("mode", "") == "static";
   // A time in µs (`format`), or a static run's load parameter in s.
@@ -83,17 +83,19 @@ TableRow table_row(const StudyCase& c) {
     if (const auto n = number_at(s, {"dt", kind})) cuts = cuts.value_or(0.0) + *n;
   const std::string reason = s.contains("exit") ? s["exit"].value("reason", "?") : "?";
   const std::string text = fmt::format(
-      "| {} | {} | {} | {} | {} | {} | {} | {} / {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", case_cell(c),
-      c.series, cell(number_at(s, {"scene", "blocks"}), "{:.0f}"), cell(number_at(s, {"steps"}), "{:.0f}"),
-      cell(cuts, "{:.0f}"), cell(number_at(s, {"wall_time", "total"}), "{:.1f}"),
-      time_cell(number_at(s, {"simulated_time"}), "{:.0f}"), cell(number_at(s, {"cracks", "tensile"}), "{:.0f}"),
-      cell(number_at(s, {"cracks", "shear"}), "{:.0f}"), cell(length, "{:.1f}", kMillimetresPerMetre),
-      cell(number_at(metrics, {"fragments"}), "{:.0f}"), cell(largest, "{:.1f}", kPercent),
-      time_cell(number_at(metrics, {"first_crack_time"}), "{:.1f}"),
+      "| {} | {} | {} | {} | {} | {} | {} | {} / {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} | {} |\n",
+      case_cell(c), c.series, cell(number_at(s, {"scene", "blocks"}), "{:.0f}"),
+      cell(number_at(s, {"steps"}), "{:.0f}"), cell(cuts, "{:.0f}"),
+      cell(number_at(s, {"wall_time", "total"}), "{:.1f}"), time_cell(number_at(s, {"simulated_time"}), "{:.0f}"),
+      cell(number_at(s, {"cracks", "tensile"}), "{:.0f}"), cell(number_at(s, {"cracks", "shear"}), "{:.0f}"),
+      cell(length, "{:.1f}", kMillimetresPerMetre), cell(number_at(metrics, {"fragments"}), "{:.0f}"),
+      cell(largest, "{:.1f}", kPercent), time_cell(number_at(metrics, {"first_crack_time"}), "{:.1f}"),
       time_cell(number_at(metrics, {"first_through_crack_time"}), "{:.1f}"),
       cell(peak_force(s), "{:.2f}", kKilonewtonsPerNewton),
       cell(number_at(s, {"energy", "largest_balance_error"}), "{:.2g}", kPercent),
-      cell(number_at(s, {"missed_contacts", "count"}), "{:.0f}"), reason);
+      cell(number_at(s, {"missed_contacts", "count"}), "{:.0f}"),
+      cell(number_at(s, {"joint_load_share", "normal"}), "{:.2f}"),
+      cell(number_at(s, {"joint_load_share", "shear"}), "{:.2f}"), reason);
   return {text, pseudo_time};
 }
 
@@ -103,9 +105,12 @@ std::string definitions(const std::vector<StudyCase>& cases) {
     const json s = read_summary(c.run.run_dir);
     if (s.is_discarded() || !s.contains("crack_metrics")) continue;
     const json& d = s["crack_metrics"]["definitions"];
-    return fmt::format("- fragment: {}\n- through-going crack: {} (through_fragment_fraction = {})\n",
-                       d.value("fragment", ""), d.value("through_crack", ""),
-                       d.value("through_fragment_fraction", 0.0));
+    std::string md =
+        fmt::format("- fragment: {}\n- through-going crack: {} (through_fragment_fraction = {})\n",
+                    d.value("fragment", ""), d.value("through_crack", ""), d.value("through_fragment_fraction", 0.0));
+    if (s.contains("joint_load_share"))
+      md += fmt::format("- joints' load share: {}\n", s["joint_load_share"].value("definition", ""));
+    return md;
   }
   return "- (no run has written its crack metrics yet)\n";
 }
@@ -140,8 +145,8 @@ std::string case_table(const std::vector<StudyCase>& cases) {
   md +=
       "| case | series | blocks | steps | dt cuts | wall (s) | t end (µs) | cracks tensile / shear | crack length (mm) "
       "| fragments | largest fragment (%) | first crack (µs) | through crack (µs) | peak force (kN/m) "
-      "| largest energy-balance error (%) | missed contacts | exit |\n";
-  md += "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
+      "| largest energy-balance error (%) | missed contacts | joints' load share, normal / shear | exit |\n";
+  md += "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
   bool pseudo_time = false;
   for (const StudyCase& c : cases) {
     const TableRow row = table_row(c);
