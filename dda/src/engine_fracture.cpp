@@ -27,10 +27,8 @@ FailureRatios failure_ratios(const JointForce& f, double length, const scene::Jo
 }
 
 JointForce stress_traction(const BlockSystem& blocks, const Joint& j) {
-  double tx = blocks.vx[j.vertex_b] - blocks.vx[j.vertex_a], ty = blocks.vy[j.vertex_b] - blocks.vy[j.vertex_a];
-  const double l = std::hypot(tx, ty);
-  tx /= l;
-  ty /= l;
+  const meshes::Point t = blocks.joint_tangent(j);
+  const double tx = t.x, ty = t.y;
   // Outward from block_a: away from its centroid (its blocks are convex).
   const meshes::Point mid = blocks.joint_midpoint(j);
   const PolygonIntegrals& a = blocks.geometry[static_cast<std::size_t>(j.block_a)];
@@ -50,7 +48,7 @@ JointLoadShare joint_load_share(const BlockSystem& blocks, const std::vector<Joi
   JointLoadShare share;
   for (std::size_t j = 0; j < blocks.joints.size(); ++j) {
     const Joint& jt = blocks.joints[j];
-    if (jt.broken || forces[j].contacts == 0) continue;
+    if (!forces[j].judged(jt)) continue;
     const JointForce load = stress_traction(blocks, jt);
     fn_load += forces[j].normal * load.normal;
     load_n2 += load.normal * load.normal;
@@ -82,11 +80,9 @@ std::vector<JointForce> Engine::joint_forces() const {
       const Joint& jt = js[static_cast<std::size_t>(c.joint)];
       if (c.joint != joint) {
         joint = c.joint;
-        tx = blocks_.vx[jt.vertex_b] - blocks_.vx[jt.vertex_a];
-        ty = blocks_.vy[jt.vertex_b] - blocks_.vy[jt.vertex_a];
-        const double tl = std::hypot(tx, ty);
-        tx /= tl;
-        ty /= tl;
+        const meshes::Point t = blocks_.joint_tangent(jt);
+        tx = t.x;
+        ty = t.y;
       }
       const double ux = blocks_.vx[c.edge1] - blocks_.vx[c.edge0], uy = blocks_.vy[c.edge1] - blocks_.vy[c.edge0];
       const double proj = (ux * tx + uy * ty) / std::hypot(ux, uy);
@@ -108,7 +104,7 @@ std::vector<FailureRatios> Engine::joint_ratios(const std::vector<JointForce>& f
 #pragma omp parallel for schedule(static)
   for (std::int64_t j = 0; j < nj; ++j) {
     const Joint& jt = js[j];
-    if (jt.broken || f[j].contacts == 0) continue;
+    if (!f[j].judged(jt)) continue;
     ratio[j] = failure_ratios(f[j], jt.length, scene_.joint_sets[static_cast<std::size_t>(jt.joint_set)]);
   }
   return ratio;

@@ -319,7 +319,7 @@ std::string joints_document(const Engine& e) {
   const std::vector<FailureRatios> ratio = e.joint_ratios(f);
   std::vector<std::size_t> carrying;
   for (std::size_t j = 0; j < joints.size(); ++j)
-    if (!joints[j].broken && f[j].contacts > 0) carrying.push_back(j);
+    if (f[j].judged(joints[j])) carrying.push_back(j);
   std::stable_sort(carrying.begin(), carrying.end(),
                    [&](std::size_t i, std::size_t j) { return ratio[i].largest() > ratio[j].largest(); });
   std::string s =

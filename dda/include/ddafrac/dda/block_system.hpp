@@ -2,6 +2,7 @@
 // The blocky system: every mesh cell is a block with its own copy of its vertices (blocks move
 // apart), plus per-block data in flat arrays (no pointer graphs; OpenMP loops walk indices).
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,12 @@ struct BlockSystem {
   /// Midpoint of joint j's edge (block_a's side), m.
   meshes::Point joint_midpoint(const Joint& j) const {
     return {0.5 * (vx[j.vertex_a] + vx[j.vertex_b]), 0.5 * (vy[j.vertex_a] + vy[j.vertex_b])};
+  }
+  /// Unit tangent of joint j's edge (block_a's side), from node_a to node_b.
+  meshes::Point joint_tangent(const Joint& j) const {
+    const double tx = vx[j.vertex_b] - vx[j.vertex_a], ty = vy[j.vertex_b] - vy[j.vertex_a];
+    const double l = std::hypot(tx, ty);
+    return {tx / l, ty / l};
   }
 };
 

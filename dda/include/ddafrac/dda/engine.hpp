@@ -59,6 +59,8 @@ struct CrackCounts {
 struct JointForce {
   double normal = 0.0, shear = 0.0;
   int contacts = 0;
+  /// An intact joint that carries contacts: the joints the fracture check judges.
+  bool judged(const Joint& j) const { return !j.broken && contacts > 0; }
 };
 
 /// The load the blocks' stress puts on joint j (N/m, as JointForce; contacts = 0): the mean
