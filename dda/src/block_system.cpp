@@ -226,6 +226,24 @@ BlockSystem build_block_system(const scene::Scene& scene, const meshes::Mesh& me
   return s;
 }
 
+std::vector<Index> node_tie_joint_sets(const BlockSystem& blocks) {
+  meshes::Index nodes = 0;
+  for (const meshes::Index n : blocks.vertex_node) nodes = std::max(nodes, n + 1);
+  std::vector<Index> set(static_cast<std::size_t>(nodes), kNodeNotTied);
+  std::vector<char> broken(set.size(), 0);
+  for (const Joint& j : blocks.joints)
+    for (const meshes::Index n : {j.node_a, j.node_b}) {
+      const auto k = static_cast<std::size_t>(n);
+      if (j.broken)
+        broken[k] = 1;
+      else
+        set[k] = j.joint_set;
+    }
+  for (std::size_t k = 0; k < set.size(); ++k)
+    if (broken[k]) set[k] = kNodeNotTied;
+  return set;
+}
+
 Index find_block(const BlockSystem& blocks, double x, double y) {
   for (std::size_t b = 0; b < blocks.block_count(); ++b) {
     const auto v0 = static_cast<std::size_t>(blocks.begin(b));

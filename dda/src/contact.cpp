@@ -771,11 +771,11 @@ const Contact* carry_contact_state(const std::vector<Contact>& previous, const C
   // New contacts touching or overlapping start closed; the copies of a shared mesh node
   // start at exactly zero gap and stay open until they overlap.
   const bool touching = c.shared_node ? c.d0 < 0.0 : c.d0 <= 0.0;
-  c.state = touching || c.bonded(joints) ? ContactState::Locked : ContactState::Open;
+  c.state = touching || c.held(joints) ? ContactState::Locked : ContactState::Open;
   const Index same = previous_by_vertex.find(c.vertex, c.vblock, c.eblock);
   const Contact* p = same >= 0 ? &previous[static_cast<std::size_t>(same)] : nullptr;
   const bool swapped = !p && (p = swapped_corner(previous, previous_by_vertex, c)) != nullptr;
-  if (!p) return nullptr;
+  if (!p || (p->tied && !c.tied)) return nullptr;
   c.carried = true;
   c.state = p->state;
   c.normal_force = p->normal_force;

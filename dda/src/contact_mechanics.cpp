@@ -10,8 +10,9 @@ ContactProperties::ContactProperties(const scene::Scene& scene) : scene_(scene) 
   for (const scene::JointSet& js : scene.joint_sets) tan_phi_.push_back(std::tan(js.friction_angle));
 }
 
-void ContactProperties::assign(Contact& c, const BlockSystem& blocks) const {
+void ContactProperties::assign(Contact& c, const BlockSystem& blocks, Index tie_set) const {
   const Index set = c.bonded(blocks.joints) ? blocks.joints[static_cast<std::size_t>(c.joint)].joint_set
+                    : c.tied                ? tie_set
                                             : static_cast<Index>(scene_.real_joints);
   c.joint_set = set;
   const scene::JointSet& js = scene_.joint_sets[static_cast<std::size_t>(set)];
@@ -26,6 +27,16 @@ void ContactProperties::assign(Contact& c, const BlockSystem& blocks) const {
   // Frictionless means no shear spring either: with ks > 0 and tanφ = 0 the contact would
   // flip between locked and sliding at every open-close iteration.
   if (c.shared_node) c.tan_phi = c.ks = 0.0;
+  // A tie's energy must not depend on which line of the corner the detection chose: equal normal
+  // and shear springs make it ½·kn·|x_v − x_u|² whatever the line's direction.
+  if (c.tied) c.ks = c.kn;
+}
+
+double node_copy_on_edge(const Contact& c, const BlockSystem& blocks) {
+  const meshes::Index node = blocks.vertex_node[static_cast<std::size_t>(c.vertex)];
+  if (blocks.vertex_node[static_cast<std::size_t>(c.edge0)] == node) return 0.0;
+  if (blocks.vertex_node[static_cast<std::size_t>(c.edge1)] == node) return 1.0;
+  return -1.0;
 }
 
 double cohesive_length(const Contact& c, const BlockSystem& s, double angle_tolerance) {

@@ -136,6 +136,8 @@ void Engine::detect() {
   saved_slide_sign_.resize(found.size());
   linear_.resize(found.size());
   const bool first = step_ == 0;
+  const bool ties = scene_.analysis.intact_nodes == scene::IntactNodes::Tie;
+  const std::vector<Index> tie_sets = ties ? node_tie_joint_sets(blocks_) : std::vector<Index>{};
   long missed = 0, cohesive = 0, overlapping = 0;
   double deepest = 0.0, deepest_overlap = 0.0;
   const double deep_energy = kDeepContactEnergyFraction * ledger_.scale();  // J/m
@@ -144,13 +146,18 @@ void Engine::detect() {
     reduction(max : deepest, deepest_overlap)
   for (std::int64_t k = 0; k < nc; ++k) {
     Contact& c = found[k];
+    const Index tie_set =
+        ties && c.shared_node ? tie_sets[static_cast<std::size_t>(blocks_.vertex_node[c.vertex])] : kNodeNotTied;
+    const double tie_end = tie_set != kNodeNotTied ? node_copy_on_edge(c, blocks_) : -1.0;
+    c.tied = tie_end >= 0.0;
     const Contact* p = carry_contact_state(previous, detection_.previous_by_vertex, c, blocks_.joints, blocks_);
     if (p) {
 #pragma omp atomic write
       carried[static_cast<std::size_t>(p - previous.data())] = 1;
     }
-    properties.assign(c, blocks_);
-    const bool bonded = c.bonded(blocks_.joints);
+    properties.assign(c, blocks_, tie_set);
+    if (c.tied) c.ref_t = tie_end;  // the other copy, on whichever line holds it
+    const bool bonded = c.held(blocks_.joints);
     if (bonded) c.state = ContactState::Locked;
     if (first && !bonded && c.state != ContactState::Open) start_cohesive(c);
     if (c.cohesive) ++cohesive;
@@ -226,7 +233,7 @@ Energies Engine::accept(double dt) {
   const ContactCommit committed = chunked_sum<ContactCommit>(nc, [&](std::int64_t k) {
     Contact& c = set_.contacts[k];
     ContactCommit one;
-    const bool bonded = c.bonded(blocks_.joints);
+    const bool bonded = c.held(blocks_.joints);
     one.energy = contact_step_energy(c, bonded);
     double& source = !c.same_line                    ? one.residual.contacts_new
                      : c.state == ContactState::Open ? one.residual.contacts_reclosed
@@ -237,7 +244,7 @@ Energies Engine::accept(double dt) {
     const ContactEnergy stored = contact_energy(c);
     c.stored_normal = stored.normal;
     c.stored_shear = stored.shear;
-    c.was_bonded = c.bonded(blocks_.joints);
+    c.was_bonded = c.held(blocks_.joints);
     one.sliding = c.state == ContactState::Sliding;
     return one;
   });

@@ -158,7 +158,7 @@ bool Engine::judge(int& changed_first) {
 #pragma omp parallel for schedule(static) reduction(+ : changed) reduction(min : first)
   for (std::int64_t k = 0; k < nc; ++k) {
     Contact& c = set_.contacts[k];
-    if (judge_contact(c, linear_[k], d_[c.vblock], d_[c.eblock], c.bonded(blocks_.joints), tol)) {
+    if (judge_contact(c, linear_[k], d_[c.vblock], d_[c.eblock], c.held(blocks_.joints), tol)) {
       ++changed;
       first = std::min(first, static_cast<int>(k));
     }

@@ -97,6 +97,21 @@ std::vector<JointForce> Engine::joint_forces() const {
   return f;
 }
 
+std::vector<JointForce> Engine::fracture_loads() const {
+  std::vector<JointForce> f = joint_forces();
+  if (scene_.analysis.fracture_load != scene::FractureLoad::BlockStress) return f;
+  const auto& js = blocks_.joints;
+  const auto nj = static_cast<std::int64_t>(js.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t j = 0; j < nj; ++j) {
+    if (!f[j].judged(js[j])) continue;
+    const int contacts = f[j].contacts;
+    f[j] = stress_traction(blocks_, js[j]);
+    f[j].contacts = contacts;
+  }
+  return f;
+}
+
 std::vector<FailureRatios> Engine::joint_ratios(const std::vector<JointForce>& f) const {
   const auto& js = blocks_.joints;
   const auto nj = static_cast<std::int64_t>(js.size());
@@ -112,7 +127,7 @@ std::vector<FailureRatios> Engine::joint_ratios(const std::vector<JointForce>& f
 
 std::vector<double> Engine::joint_utilisation() const {
   std::vector<double> u(blocks_.block_count(), kNoVirtualJoints);
-  const std::vector<FailureRatios> ratio = joint_ratios(joint_forces());
+  const std::vector<FailureRatios> ratio = joint_ratios(fracture_loads());
   for (std::size_t j = 0; j < ratio.size(); ++j) {
     const double r = ratio[j].largest();  // 0 for a broken joint: its blocks had joints
     const Joint& jt = blocks_.joints[j];
@@ -126,7 +141,7 @@ std::size_t Engine::fracture_check() {
   auto& js = blocks_.joints;
   if (js.empty()) return 0;
   // Judged against the state of the step; nothing is changed until all are judged.
-  const std::vector<FailureRatios> ratio = joint_ratios(joint_forces());
+  const std::vector<FailureRatios> ratio = joint_ratios(fracture_loads());
   std::size_t n = 0;
   for (std::size_t j = 0; j < js.size(); ++j) {
     if (!ratio[j].broken()) continue;

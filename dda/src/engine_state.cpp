@@ -54,7 +54,7 @@ void serialize(Archive& a, Joint& j, unsigned) {
 
 template <class Archive>
 void serialize(Archive& a, Contact& c, unsigned) {
-  a& c.vblock& c.eblock& c.vertex& c.edge0& c.edge1& c.joint& c.joint_set& c.vertex_vertex& c.shared_node;
+  a& c.vblock& c.eblock& c.vertex& c.edge0& c.edge1& c.joint& c.joint_set& c.vertex_vertex& c.shared_node& c.tied;
   a& c.state& c.ref_t& c.normal_force& c.shear_force& c.slip& c.slide_sign& c.rest_gap;
   a& c.cohesive& c.cohesive_length& c.stored_normal& c.stored_shear& c.was_bonded;
   a& c.kn& c.ks& c.tan_phi& c.cohesion& c.tensile_strength;

@@ -26,13 +26,16 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
-fs::path run_with_threads(int threads, const fs::path& root) {
+fs::path run_with_threads(int threads, const fs::path& root, scene::IntactNodes nodes = scene::IntactNodes::Contact,
+                          scene::FractureLoad load = scene::FractureLoad::JointSprings) {
   omp_set_num_threads(threads);
   const meshes::Mesh mesh = make_ring_disc_mesh(0.1, 2000);
   scene::Scene s = make_impact_scene(3.5, 1e-3);
+  s.analysis.intact_nodes = nodes;
+  s.analysis.fracture_load = load;
   Engine e(s, mesh);
   RunOptions o;
-  o.out_dir = root / ("threads" + std::to_string(threads));
+  o.out_dir = root / ("threads" + std::to_string(threads) + (nodes == scene::IntactNodes::Tie ? "-ties" : ""));
   o.threads = threads;
   o.max_steps = 150;
   const RunResult r = run_simulation(e, o);
@@ -53,6 +56,19 @@ BOOST_AUTO_TEST_CASE(one_and_two_threads_are_bit_identical) {
   const fs::path b = run_with_threads(2, root);
   const std::string ha = slurp(a / "history.csv"), hb = slurp(b / "history.csv");
   BOOST_TEST(ha.size() > 1000u);  // 150 rows were written
+  BOOST_TEST((ha == hb));
+  BOOST_TEST((slurp(a / "final.vtu") == slurp(b / "final.vtu")));
+  fs::remove_all(root);
+}
+
+// The same with the copies of intact fans' nodes tied and the fracture criterion on the blocks'
+// stress (analysis.intact_nodes, analysis.fracture_load).
+BOOST_AUTO_TEST_CASE(one_and_two_threads_are_bit_identical_with_ties_and_the_stress_criterion) {
+  const fs::path root = fs::temp_directory_path() / ("ddafrac-dda-threads-ties-" + std::to_string(::getpid()));
+  const fs::path a = run_with_threads(1, root, scene::IntactNodes::Tie, scene::FractureLoad::BlockStress);
+  const fs::path b = run_with_threads(2, root, scene::IntactNodes::Tie, scene::FractureLoad::BlockStress);
+  const std::string ha = slurp(a / "history.csv"), hb = slurp(b / "history.csv");
+  BOOST_TEST(ha.size() > 1000u);
   BOOST_TEST((ha == hb));
   BOOST_TEST((slurp(a / "final.vtu") == slurp(b / "final.vtu")));
   fs::remove_all(root);

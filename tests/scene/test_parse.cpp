@@ -207,6 +207,25 @@ BOOST_AUTO_TEST_CASE(a_solver_tolerance_round_off_cannot_reach_is_refused) {
                  "analysis.solver_tolerance", 11, "got 1e-16");
 }
 
+BOOST_AUTO_TEST_CASE(node_ties_and_the_stress_criterion_are_off_unless_given) {
+  const scene::Scene plain = scene::parse_scene(kValid, "ok.toml");
+  BOOST_TEST((plain.analysis.intact_nodes == scene::IntactNodes::Contact));
+  BOOST_TEST((plain.analysis.fracture_load == scene::FractureLoad::JointSprings));
+  const scene::Scene s =
+      scene::parse_scene(replaced(kValid, "gravity = [0.0, -9.81]",
+                                  "gravity = [0.0, -9.81]\nintact_nodes = \"tie\"\nfracture_load = \"block_stress\""),
+                         "ok.toml");
+  BOOST_TEST((s.analysis.intact_nodes == scene::IntactNodes::Tie));
+  BOOST_TEST((s.analysis.fracture_load == scene::FractureLoad::BlockStress));
+}
+
+BOOST_AUTO_TEST_CASE(an_unknown_node_rule_or_fracture_load_is_refused_with_the_choices) {
+  expect_problem(replaced(kValid, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nintact_nodes = \"glue\""),
+                 "analysis.intact_nodes", 11, "tie");
+  expect_problem(replaced(kValid, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nfracture_load = \"stress\""),
+                 "analysis.fracture_load", 11, "block_stress");
+}
+
 BOOST_AUTO_TEST_CASE(mass_damping_is_off_unless_given) {
   BOOST_TEST(scene::parse_scene(kValid, "ok.toml").analysis.mass_damping == 0.0);
   const scene::Scene s = scene::parse_scene(

@@ -110,6 +110,14 @@ BlockSystem build_block_system(const scene::Scene& scene, const meshes::Mesh& me
                                const std::vector<PointLoad>& extra_loads = {},
                                const std::vector<Anchor>& extra_anchors = {});
 
+/// node_tie_joint_sets' entry of a node whose copies are not tied: no virtual joint meets it, or
+/// one that does has broken.
+constexpr Index kNodeNotTied = -1;
+
+/// Per mesh node: the joint set of the virtual joints that meet it while every one of them is
+/// intact, else kNodeNotTied. The copies of such a node are tied (scene::IntactNodes::Tie).
+std::vector<Index> node_tie_joint_sets(const BlockSystem& blocks);
+
 /// Recomputes area, centroid, moments and shortest edge of every block (parallel).
 void update_block_geometry(BlockSystem& blocks);
 

@@ -29,6 +29,12 @@ struct Contact {
   // from t = 0 whatever the wedge angles, so that the copies can never overlap unseen. Such a
   // contact starts open at zero gap and never gets the cohesion of a real joint closed at t = 0.
   bool shared_node = false;
+  // A shared-node contact whose copies are tied (scene::IntactNodes::Tie): while every virtual
+  // joint at the node is intact, a bilateral spring of the joints' kn, normal and shear alike,
+  // with its reference point on the other copy, holds ½·kn·|x_v − x_u|²: a function of the two
+  // blocks' positions alone, like the continuum it stands for (docs/design.md §4.6). Set by the
+  // engine at each detection.
+  bool tied = false;
   // Carried from step to step.
   ContactState state = ContactState::Open;
   double ref_t = 0.0;         // locked reference point on the edge, as edge parameter 0..1
@@ -46,7 +52,7 @@ struct Contact {
   bool cohesive = false;
   double cohesive_length = 0.0;  // l_c, m: this contact's share of the joint face
   // Energy ledger: what the springs stored at the end of the previous step (J/m) and whether the
-  // contact was an intact virtual joint then (energy_ledger.hpp).
+  // contact was held then, an intact virtual joint or a tie (energy_ledger.hpp).
   double stored_normal = 0.0, stored_shear = 0.0;
   bool was_bonded = false;
   // Properties.
@@ -72,6 +78,8 @@ struct Contact {
   bool bonded(const std::vector<Joint>& joints) const {
     return joint >= 0 && !joints[static_cast<std::size_t>(joint)].broken;
   }
+  /// Bonded, or tied: locked whatever its force, tension included.
+  bool held(const std::vector<Joint>& joints) const { return tied || bonded(joints); }
   /// Blocks of the pair in increasing order.
   Index pair_low() const { return vblock < eblock ? vblock : eblock; }
   Index pair_high() const { return vblock < eblock ? eblock : vblock; }
@@ -213,8 +221,10 @@ void detect_contacts(const BlockSystem& blocks, const DetectionParams& params, D
 
 /// Carries state (state, reference point, forces, slip, cohesion) to the current contact `c` from
 /// the previous list's contact of the same vertex and block pair, or of the same vertex-vertex
-/// corner with vertex and edge swapped; a new contact starts closed (locked) if it touches or is a
-/// bonded joint, else open (a broken joint starts like a contact that was never bonded).
+/// corner with vertex and edge swapped; a new contact starts closed (locked) if it touches or is
+/// held (Contact::held), else open (a broken joint starts like a contact that was never bonded).
+/// A tie that is no longer tied (`c.tied` is set before the call) is not carried: the node's
+/// contact starts afresh and the tie's spring is released with the vanished contacts.
 /// Returns the previous contact it carried, or null if `c` is new. `previous_by_vertex` indexes
 /// `previous` (DetectionWorkspace after detection). Reads only `c` of the current list, so the
 /// contacts of a list can be carried in parallel. (docs/design.md §4.7)

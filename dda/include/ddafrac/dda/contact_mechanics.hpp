@@ -11,13 +11,15 @@
 namespace ddafrac::dda {
 
 /// Stiffness and friction of contacts from their joint set (bonded joints: their virtual joint
-/// set; others, broken joints included: the scene's real joints). kn and ks are the joint set's
-/// (the scene parser fills in their defaults, scene/defaults.hpp).
+/// set; ties: `tie_set`, the virtual joint set of their node (node_tie_joint_sets); others,
+/// broken joints included: the scene's real joints). kn and ks are the joint set's (the scene
+/// parser fills in their defaults, scene/defaults.hpp), but a tie is isotropic (ks = kn) and a
+/// shared-node contact frictionless.
 class ContactProperties {
  public:
   explicit ContactProperties(const scene::Scene& scene);
   /// Sets c's joint set and properties; reads only c (contacts can be assigned in parallel).
-  void assign(Contact& c, const BlockSystem& blocks) const;
+  void assign(Contact& c, const BlockSystem& blocks, Index tie_set = kNodeNotTied) const;
 
  private:
   const scene::Scene& scene_;
@@ -29,6 +31,11 @@ class ContactProperties {
 /// vertex-edge contact at each end, so the halves add up to the face; a corner touching a face
 /// has no face along it and gets 0.
 double cohesive_length(const Contact& c, const BlockSystem& blocks, double angle_tolerance);
+
+/// Where the reference edge of a shared-node contact holds the other copy of its node: edge
+/// parameter 0 (at edge0) or 1 (at edge1), or -1 if neither end is a copy of the vertex's node (a
+/// copy held on its entrance line into the other block, docs/design.md §4.6).
+double node_copy_on_edge(const Contact& c, const BlockSystem& blocks);
 
 /// Normal gap, shear displacement from the locked reference point, and their gradients with
 /// respect to the unknowns of both blocks, from the current geometry. Open contacts

@@ -103,8 +103,8 @@ constexpr double kDefaultEnergyBalanceTolerance = 0.01;
 /// What the step's linearised contact springs, friction and releases did, from the state of
 /// every contact after the converged open-close iteration (trial state, gaps and forces at the
 /// step's start and end, energy stored at the end of the previous step). A contact that opens
-/// gives up what it stored: to joint_breaks if it was an intact virtual joint at the previous
-/// step and is broken now, else to numerical.
+/// gives up what it stored: to joint_breaks if it was held at the previous step (an intact
+/// virtual joint, or a tie) and is not now, else to numerical.
 StepEnergy contact_step_energy(const Contact& c, bool bonded_now);
 
 /// What a contact closed at the end of the step stored at its start on the moved geometry (½·kn·d0²,
@@ -115,8 +115,8 @@ StepEnergy contact_step_energy(const Contact& c, bool bonded_now);
 double contact_start_mismatch(const Contact& c, bool bonded_now);
 
 /// What a contact that opens, or vanishes from the contact list, gives up: the energy it stored
-/// at the end of the previous step, to joint_breaks if it was an intact virtual joint then and is
-/// broken now (a joint loaded in tension opens wider than the search distance when it breaks),
+/// at the end of the previous step, to joint_breaks if it was held then (an intact virtual joint,
+/// or a tie) and is not now (a joint loaded in tension opens wider than the search distance when it breaks),
 /// else to numerical.
 StepEnergy released_energy(const Contact& c, bool bonded_now);
 

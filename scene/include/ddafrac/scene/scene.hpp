@@ -49,6 +49,13 @@ struct Body {
 using common::PlaneModel;
 enum class Mode { Dynamic, Static };
 enum class Solver { Pcg, Direct };  // block-Jacobi PCG, or a sparse direct factorisation
+/// How the copies of a mesh node are held in two blocks of one body that meet only at that node
+/// (not along a virtual joint): by a unilateral frictionless contact, or, while every virtual
+/// joint at the node is intact, tied by a bilateral isotropic spring (docs/design.md §4.6).
+enum class IntactNodes { Contact, Tie };
+/// What the fracture check judges an intact virtual joint on: the forces of its own springs, or
+/// the load the mean stress of its two blocks puts on it (docs/design.md §5).
+enum class FractureLoad { JointSprings, BlockStress };
 
 struct Analysis {
   Mode mode = Mode::Dynamic;
@@ -68,6 +75,8 @@ struct Analysis {
   // only). It damps the slow modes most (damping ratio η/(2ω) of a mode of angular frequency ω),
   // such as a platen ringing on a disc, and drags a block moving as a whole by η·m·v.
   double mass_damping = 0.0;
+  IntactNodes intact_nodes = IntactNodes::Contact;
+  FractureLoad fracture_load = FractureLoad::JointSprings;
 };
 
 struct Gauge {
