@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 #include <tuple>
 
@@ -226,22 +227,36 @@ BlockSystem build_block_system(const scene::Scene& scene, const meshes::Mesh& me
   return s;
 }
 
-std::vector<Index> node_tie_joint_sets(const BlockSystem& blocks) {
-  meshes::Index nodes = 0;
-  for (const meshes::Index n : blocks.vertex_node) nodes = std::max(nodes, n + 1);
-  std::vector<Index> set(static_cast<std::size_t>(nodes), kNodeNotTied);
-  std::vector<char> broken(set.size(), 0);
-  for (const Joint& j : blocks.joints)
-    for (const meshes::Index n : {j.node_a, j.node_b}) {
-      const auto k = static_cast<std::size_t>(n);
-      if (j.broken)
-        broken[k] = 1;
-      else
-        set[k] = j.joint_set;
+NodeTieGroups node_tie_groups(const BlockSystem& blocks) {
+  const std::size_t nv = blocks.vertex_count();
+  std::vector<Index> parent(nv);
+  std::iota(parent.begin(), parent.end(), Index{0});
+  const auto root = [&](Index v) {
+    while (parent[static_cast<std::size_t>(v)] != v)
+      v = parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
+    return v;
+  };
+  const auto copy_in = [&](Index block, meshes::Index node) {
+    for (Index v = blocks.begin(static_cast<std::size_t>(block)); v < blocks.end(static_cast<std::size_t>(block)); ++v)
+      if (blocks.vertex_node[static_cast<std::size_t>(v)] == node) return v;
+    return kNodeNotTied;
+  };
+  NodeTieGroups g;
+  g.joint_set.assign(nv, kNodeNotTied);
+  // Serial, in joint order, the smaller root kept: the labels do not depend on the thread count.
+  for (const Joint& j : blocks.joints) {
+    if (j.broken) continue;
+    for (const auto& [va, node] : {std::pair{j.vertex_a, j.node_a}, std::pair{j.vertex_b, j.node_b}}) {
+      const Index vb = copy_in(j.block_b, node);
+      const Index ra = root(va), rb = root(vb);
+      parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+      g.joint_set[static_cast<std::size_t>(va)] = g.joint_set[static_cast<std::size_t>(vb)] = j.joint_set;
     }
-  for (std::size_t k = 0; k < set.size(); ++k)
-    if (broken[k]) set[k] = kNodeNotTied;
-  return set;
+  }
+  g.group.resize(nv);
+  for (std::size_t v = 0; v < nv; ++v)
+    g.group[v] = g.joint_set[v] == kNodeNotTied ? kNodeNotTied : root(static_cast<Index>(v));
+  return g;
 }
 
 Index find_block(const BlockSystem& blocks, double x, double y) {

@@ -766,8 +766,8 @@ const Contact* swapped_corner(const std::vector<Contact>& previous, const Contac
 
 }  // namespace
 
-const Contact* carry_contact_state(const std::vector<Contact>& previous, const ContactsByVertex& previous_by_vertex,
-                                   Contact& c, const std::vector<Joint>& joints, const BlockSystem& blocks) {
+CarriedState carry_contact_state(const std::vector<Contact>& previous, const ContactsByVertex& previous_by_vertex,
+                                 Contact& c, const std::vector<Joint>& joints, const BlockSystem& blocks) {
   // New contacts touching or overlapping start closed; the copies of a shared mesh node
   // start at exactly zero gap and stay open until they overlap.
   const bool touching = c.shared_node ? c.d0 < 0.0 : c.d0 <= 0.0;
@@ -775,7 +775,8 @@ const Contact* carry_contact_state(const std::vector<Contact>& previous, const C
   const Index same = previous_by_vertex.find(c.vertex, c.vblock, c.eblock);
   const Contact* p = same >= 0 ? &previous[static_cast<std::size_t>(same)] : nullptr;
   const bool swapped = !p && (p = swapped_corner(previous, previous_by_vertex, c)) != nullptr;
-  if (!p || (p->tied && !c.tied)) return nullptr;
+  if (!p) return {};
+  if (p->tied && !c.tied) return {nullptr, true};
   c.carried = true;
   c.state = p->state;
   c.normal_force = p->normal_force;
@@ -796,7 +797,7 @@ const Contact* carry_contact_state(const std::vector<Contact>& previous, const C
   } else if (p->edge0 == c.edge0 && p->edge1 == c.edge1) {
     c.ref_t = p->ref_t;
   }
-  return p;
+  return {p, false};
 }
 
 void build_contact_topology(ContactSet& set, std::size_t nb) {

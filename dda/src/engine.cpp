@@ -137,7 +137,7 @@ void Engine::detect() {
   linear_.resize(found.size());
   const bool first = step_ == 0;
   const bool ties = scene_.analysis.intact_nodes == scene::IntactNodes::Tie;
-  const std::vector<Index> tie_sets = ties ? node_tie_joint_sets(blocks_) : std::vector<Index>{};
+  const NodeTieGroups tie_groups = ties ? node_tie_groups(blocks_) : NodeTieGroups{};
   long missed = 0, cohesive = 0, overlapping = 0;
   double deepest = 0.0, deepest_overlap = 0.0;
   const double deep_energy = kDeepContactEnergyFraction * ledger_.scale();  // J/m
@@ -146,11 +146,11 @@ void Engine::detect() {
     reduction(max : deepest, deepest_overlap)
   for (std::int64_t k = 0; k < nc; ++k) {
     Contact& c = found[k];
-    const Index tie_set =
-        ties && c.shared_node ? tie_sets[static_cast<std::size_t>(blocks_.vertex_node[c.vertex])] : kNodeNotTied;
-    const double tie_end = tie_set != kNodeNotTied ? node_copy_on_edge(c, blocks_) : -1.0;
-    c.tied = tie_end >= 0.0;
-    const Contact* p = carry_contact_state(previous, detection_.previous_by_vertex, c, blocks_.joints, blocks_);
+    const double tie_end = ties && c.shared_node ? node_copy_on_edge(c, blocks_) : -1.0;
+    c.tied = tie_end >= 0.0 && tie_groups.tied(c.vertex, tie_end == 0.0 ? c.edge0 : c.edge1);
+    const Index tie_set = c.tied ? tie_groups.joint_set[static_cast<std::size_t>(c.vertex)] : kNodeNotTied;
+    const CarriedState from = carry_contact_state(previous, detection_.previous_by_vertex, c, blocks_.joints, blocks_);
+    const Contact* p = from.previous;
     if (p) {
 #pragma omp atomic write
       carried[static_cast<std::size_t>(p - previous.data())] = 1;
@@ -164,12 +164,12 @@ void Engine::detect() {
     // A contact seen for the first time after step 1 already deeper than one step's allowed
     // displacement, or taking a new line whose spring takes a share of the balance at once,
     // closed unseen (Statistics::missed_contacts). On the line it had, the spring's energy
-    // changes only by the linearisation's error.
+    // changes only by the linearisation's error. A released tie's contact was held all along.
     const double overlap = std::max(-c.d0, 0.0);
     const bool new_line = !p || p->vertex != c.vertex || p->edge0 != c.edge0;
     c.same_line = !new_line;
     const double taken = spring_energy(c.kn, overlap) - (p ? p->stored_normal : 0.0);  // J/m
-    if (!first && ((!p && overlap > allowed_) || (new_line && taken > deep_energy))) {
+    if (!first && !from.tie_released && ((!p && overlap > allowed_) || (new_line && taken > deep_energy))) {
       ++missed;
       deepest = std::max(deepest, overlap);
     }
@@ -182,9 +182,14 @@ void Engine::detect() {
     linearise_contact(c, linear_[k], blocks_);
     // An ordinary contact that starts the step open, or is new, pushes from the overlap it has
     // now as far as that lies inside the open-close band; overlap deeper than the band (a contact
-    // found late) still pushes back (Contact::rest_gap).
-    if (!p || c.state == ContactState::Open)
-      c.rest_gap = bonded || c.cohesive ? 0.0 : std::clamp(c.d0, -state_band(), 0.0);
+    // found late) still pushes back (Contact::rest_gap). The contact of a node whose tie was just
+    // released pushes from all the overlap the tie held (what the tie stored went with it to the
+    // break; a tie compressed by its share of a flat's load holds micrometres), and while it stays
+    // open from what is left of that overlap.
+    if (!p || c.state == ContactState::Open) {
+      const double deepest_rest = std::min(-state_band(), from.tie_released ? c.d0 : p ? p->rest_gap : 0.0);
+      c.rest_gap = bonded || c.cohesive ? 0.0 : std::clamp(c.d0, deepest_rest, 0.0);
+    }
     saved_slide_sign_[k] = c.slide_sign;
   }
   ledger_.total += chunked_sum<StepEnergy>(static_cast<std::int64_t>(carried.size()), [&](std::int64_t k) {

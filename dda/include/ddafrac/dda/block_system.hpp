@@ -110,13 +110,23 @@ BlockSystem build_block_system(const scene::Scene& scene, const meshes::Mesh& me
                                const std::vector<PointLoad>& extra_loads = {},
                                const std::vector<Anchor>& extra_anchors = {});
 
-/// node_tie_joint_sets' entry of a node whose copies are not tied: no virtual joint meets it, or
-/// one that does has broken.
+/// NodeTieGroups' entry of a vertex that no intact virtual joint at its node touches.
 constexpr Index kNodeNotTied = -1;
 
-/// Per mesh node: the joint set of the virtual joints that meet it while every one of them is
-/// intact, else kNodeNotTied. The copies of such a node are tied (scene::IntactNodes::Tie).
-std::vector<Index> node_tie_joint_sets(const BlockSystem& blocks);
+/// The copies of each mesh node that intact virtual joints at the node hold together: around a
+/// node, the blocks of its fan that a chain of intact joints at the node connects form one group
+/// (all of the fan while it is intact; one group still while a crack only ends at the node; two
+/// once a crack passes through it). Two copies of a group are tied (scene::IntactNodes::Tie).
+struct NodeTieGroups {
+  std::vector<Index> group;      // per vertex: its group's label (a vertex of it), or kNodeNotTied
+  std::vector<Index> joint_set;  // per vertex: the joint set of an intact joint at it, or kNodeNotTied
+  /// Whether vertices v and u (copies of one node) are tied.
+  bool tied(Index v, Index u) const {
+    return group[static_cast<std::size_t>(v)] != kNodeNotTied &&
+           group[static_cast<std::size_t>(v)] == group[static_cast<std::size_t>(u)];
+  }
+};
+NodeTieGroups node_tie_groups(const BlockSystem& blocks);
 
 /// Recomputes area, centroid, moments and shortest edge of every block (parallel).
 void update_block_geometry(BlockSystem& blocks);

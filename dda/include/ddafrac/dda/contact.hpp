@@ -29,11 +29,11 @@ struct Contact {
   // from t = 0 whatever the wedge angles, so that the copies can never overlap unseen. Such a
   // contact starts open at zero gap and never gets the cohesion of a real joint closed at t = 0.
   bool shared_node = false;
-  // A shared-node contact whose copies are tied (scene::IntactNodes::Tie): while every virtual
-  // joint at the node is intact, a bilateral spring of the joints' kn, normal and shear alike,
-  // with its reference point on the other copy, holds ½·kn·|x_v − x_u|²: a function of the two
-  // blocks' positions alone, like the continuum it stands for (docs/design.md §4.6). Set by the
-  // engine at each detection.
+  // A shared-node contact whose copies are tied (scene::IntactNodes::Tie): while intact virtual
+  // joints at the node connect its two blocks around the node (NodeTieGroups), a bilateral
+  // spring of the joints' kn, normal and shear alike, with its reference point on the other copy,
+  // holds ½·kn·|x_v − x_u|²: a function of the two blocks' positions alone, like the continuum it
+  // stands for (docs/design.md §4.6). Set by the engine at each detection.
   bool tied = false;
   // Carried from step to step.
   ContactState state = ContactState::Open;
@@ -225,11 +225,16 @@ void detect_contacts(const BlockSystem& blocks, const DetectionParams& params, D
 /// held (Contact::held), else open (a broken joint starts like a contact that was never bonded).
 /// A tie that is no longer tied (`c.tied` is set before the call) is not carried: the node's
 /// contact starts afresh and the tie's spring is released with the vanished contacts.
-/// Returns the previous contact it carried, or null if `c` is new. `previous_by_vertex` indexes
-/// `previous` (DetectionWorkspace after detection). Reads only `c` of the current list, so the
-/// contacts of a list can be carried in parallel. (docs/design.md §4.7)
-const Contact* carry_contact_state(const std::vector<Contact>& previous, const ContactsByVertex& previous_by_vertex,
-                                   Contact& c, const std::vector<Joint>& joints, const BlockSystem& blocks);
+/// Returns the previous contact it carried (null if `c` is new), and whether `c` is the node
+/// contact of a tie just released. `previous_by_vertex` indexes `previous` (DetectionWorkspace
+/// after detection). Reads only `c` of the current list, so the contacts of a list can be carried
+/// in parallel. (docs/design.md §4.7)
+struct CarriedState {
+  const Contact* previous = nullptr;
+  bool tie_released = false;
+};
+CarriedState carry_contact_state(const std::vector<Contact>& previous, const ContactsByVertex& previous_by_vertex,
+                                 Contact& c, const std::vector<Joint>& joints, const BlockSystem& blocks);
 
 /// Fills pairs and per-block lists of a sorted contact list.
 void build_contact_topology(ContactSet& set, std::size_t block_count);

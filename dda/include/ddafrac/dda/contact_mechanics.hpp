@@ -11,7 +11,7 @@
 namespace ddafrac::dda {
 
 /// Stiffness and friction of contacts from their joint set (bonded joints: their virtual joint
-/// set; ties: `tie_set`, the virtual joint set of their node (node_tie_joint_sets); others,
+/// set; ties: `tie_set`, the virtual joint set of their node (NodeTieGroups); others,
 /// broken joints included: the scene's real joints). kn and ks are the joint set's (the scene
 /// parser fills in their defaults, scene/defaults.hpp), but a tie is isotropic (ks = kn) and a
 /// shared-node contact frictionless.
