@@ -66,8 +66,19 @@ constexpr double kStaticTimeStretch = 1e4;
 /// the platen's speed, by η·m·v/2. The family runs the disc undamped and in static mode (the rate
 /// family's runs) beside them.
 constexpr double kMassDampings[] = {5e3, 1e4, 2.5e4};
+/// How the node-model family holds the copies of an intact body's mesh nodes and what its
+/// fracture check judges (analysis.intact_nodes, analysis.fracture_load; docs/design.md §4.6, §5):
+/// the scenes' own model first, then the criterion on the blocks' stress alone, then with ties.
+struct NodeModel {
+  const char* suffix;  // of the variant's name ("": the scene as it is)
+  const char* intact_nodes;
+  const char* fracture_load;
+};
+constexpr NodeModel kNodeModels[] = {
+    {"", "contact", "joint_springs"}, {"-stress", "contact", "block_stress"}, {"-ties", "tie", "block_stress"}};
 constexpr const char* kPlaten = "top_platen";  // the prescribed body of the Brazilian scenes
-constexpr const char* kFamilies[] = {"mesh", "penalty", "penalty-theta", "timestep", "slot-tips", "rate", "damping"};
+constexpr const char* kFamilies[] = {"mesh",      "penalty", "penalty-theta", "timestep",
+                                     "slot-tips", "rate",    "damping",       "node-model"};
 // The names under which study.json records --family and --blocks (StudyKind::options).
 constexpr const char* kFamilyOption = "family";
 constexpr const char* kBlocksOption = "blocks";
@@ -217,6 +228,15 @@ class VariantBuilder {
     return v;
   }
 
+  /// The copies of intact fans' nodes and the fracture criterion of `model`.
+  Variant with_node_model(Variant v, const NodeModel& model) const {
+    if (*model.suffix == '\0') return v;
+    v.name += model.suffix;
+    v.tables["analysis"]["intact_nodes"] = fmt::format("\"{}\"", model.intact_nodes);
+    v.tables["analysis"]["fracture_load"] = fmt::format("\"{}\"", model.fracture_load);
+    return v;
+  }
+
   /// Static mode, the platen moving as far per step as in the scene over the same travel
   /// (kStaticTimeStretch).
   Variant in_static_mode(Variant v) const {
@@ -307,6 +327,12 @@ std::vector<Variant> variants(const SensitivityArguments& args, const fs::path& 
       add(build.with_mass_damping(build.at_scale(kFlattenedDiscs[0]), eta), "damping");
     add(build.in_static_mode(build.at_scale(kFlattenedDiscs[0])), "damping");
   }
+  if (wanted("node-model"))
+    for (const NodeModel& model : kNodeModels) {
+      add(build.with_node_model(build.at_scale(kImpactCase), model), "node-model");
+      add(build.with_node_model(build.at_scale(kFlattenedDiscs[0]), model), "node-model");
+      add(build.with_node_model(build.in_static_mode(build.at_scale(kFlattenedDiscs[0])), model), "node-model");
+    }
   for (const Variant& v : all) build.write(v);
   return all;
 }

@@ -66,6 +66,13 @@ RINGING_WINDOW = (0.2, 0.9)
 # the strain energy is still near zero and the ratio means nothing).
 RATIO_START_FRACTION = 0.1
 # Case 4's crack measures: (label, function of the run record -> value or None).
+# The node-model family's models (docs/design.md §4.6, §5): (intact_nodes, fracture_load) -> name.
+NODE_MODEL_NAMES = {
+    ("contact", "joint_springs"): "node contacts",
+    ("contact", "block_stress"): "node contacts, stress criterion",
+    ("tie", "block_stress"): "ties, stress criterion",
+}
+
 MEASURES = (
     ("cracks tensile", lambda r: r["cracks"].get("tensile")),
     ("cracks shear", lambda r: r["cracks"].get("shear")),
@@ -139,6 +146,9 @@ def read_run(h, case, families, run_dir):
         "wall": summary.get("wall_time", {}).get("total"),
         "balance": summary.get("energy", {}).get("largest_balance_error"),
         "eta": scene.get("analysis", {}).get("mass_damping", 0.0),
+        # Runs written before these options had node contacts and the springs' criterion.
+        "node_model": NODE_MODEL_NAMES.get((summary["scene"].get("intact_nodes", "contact"),
+                                            summary["scene"].get("fracture_load", "joint_springs"))),
     }
 
 
@@ -536,6 +546,46 @@ def damping_section(h, runs, figures, save):
     return md
 
 
+def node_model_section(h, runs, figures, save):
+    """Case 4 and the flattened disc (dynamic and static) under each node model: a table each and
+    one figure of crack counts per model."""
+    order = list(NODE_MODEL_NAMES.values())
+    rank = lambda r: order.index(r["node_model"]) if r["node_model"] in order else len(order)  # noqa: E731
+    model = lambda r: r["node_model"] or "?"  # noqa: E731
+    impact = sorted([r for r in runs if r["case"].startswith("case")], key=rank)
+    brazilian = [r for r in runs if not r["case"].startswith("case")]
+    static, dynamic = split_static(brazilian, rank)
+    static = sorted(static, key=rank)
+    md = ("## Node model: node contacts or ties, and what the fracture criterion judges\n\n"
+          "Models: " + "; ".join(f"{name}: intact_nodes = {nodes}, fracture_load = {load}"
+                                 for (nodes, load), name in NODE_MODEL_NAMES.items()) + ".\n\n")
+    groups = [(title, series) for title, series in
+              (("case 4", impact), ("flattened disc, dynamic", dynamic), ("flattened disc, static", static)) if series]
+    for title, series in groups:
+        md += f"### {title}\n\n"
+        if series is impact:
+            md += measure_table(series, "node model", model, "{}") + "\n"
+        else:
+            md += brazilian_table(h, series, "node model", model, "{}") + "\n"
+    if groups:
+        figure, axes = plt.subplots(1, len(groups), figsize=(5 * len(groups), 4.5), squeeze=False)
+        for axis, (title, series) in zip(axes[0], groups):
+            names = [model(r).replace(", ", ",\n") for r in series]
+            x = np.arange(len(series))
+            tensile = [r["cracks"].get("tensile") or 0 for r in series]
+            shear = [r["cracks"].get("shear") or 0 for r in series]
+            axis.bar(x, tensile, label="tensile")
+            axis.bar(x, shear, bottom=tensile, label="shear")
+            axis.set_xticks(x, names)
+            axis.set_ylabel("cracks at the end")
+            axis.set_title(title)
+            axis.legend()
+            axis.grid(alpha=0.3, axis="y")
+        figure.suptitle("crack counts against the node model")
+        save(figure, os.path.join(figures, "node_model.png"))
+    return md
+
+
 def theta_section(runs, figures, save):
     """The θ series at each kn the family ran (the scene's and 10·E), one table and one line each."""
     angle = lambda r: r["scene"].get("geometry", {}).get("joint_angle")  # noqa: E731
@@ -599,6 +649,8 @@ def draw_study(args, h, save):
         md += theta_section(runs["penalty-theta"], figures, save)
     if "damping" in runs:
         md += damping_section(h, runs["damping"], figures, save)
+    if "node-model" in runs:
+        md += node_model_section(h, runs["node-model"], figures, save)
     write_whole(os.path.join(args.study_dir, "analysis.md"), md)
 
 
