@@ -157,9 +157,9 @@ void Engine::detect() {
     }
     properties.assign(c, blocks_, tie_set);
     if (c.tied) c.ref_t = tie_end;  // the other copy, on whichever line holds it
-    const bool bonded = c.held(blocks_.joints);
-    if (bonded) c.state = ContactState::Locked;
-    if (first && !bonded && c.state != ContactState::Open) start_cohesive(c);
+    const bool held = c.held(blocks_.joints);
+    if (held) c.state = ContactState::Locked;
+    if (first && !held && c.state != ContactState::Open) start_cohesive(c);
     if (c.cohesive) ++cohesive;
     // A contact seen for the first time after step 1 already deeper than one step's allowed
     // displacement, or taking a new line whose spring takes a share of the balance at once,
@@ -175,7 +175,7 @@ void Engine::detect() {
     }
     // At t = 0 no two blocks may overlap by more than one step's allowed displacement: deeper,
     // the mesh's cells or bodies interpenetrate (Statistics::initial_overlaps).
-    if (first && !bonded && -c.d0 > allowed_) {
+    if (first && !held && -c.d0 > allowed_) {
       ++overlapping;
       deepest_overlap = std::max(deepest_overlap, -c.d0);
     }
@@ -188,12 +188,13 @@ void Engine::detect() {
     // open from what is left of that overlap.
     if (!p || c.state == ContactState::Open) {
       const double deepest_rest = std::min(-state_band(), from.tie_released ? c.d0 : p ? p->rest_gap : 0.0);
-      c.rest_gap = bonded || c.cohesive ? 0.0 : std::clamp(c.d0, deepest_rest, 0.0);
+      c.rest_gap = held || c.cohesive ? 0.0 : std::clamp(c.d0, deepest_rest, 0.0);
     }
     saved_slide_sign_[k] = c.slide_sign;
   }
   ledger_.total += chunked_sum<StepEnergy>(static_cast<std::int64_t>(carried.size()), [&](std::int64_t k) {
     const Contact& vanished = previous[k];
+    // A vanished tie is released (never bonded to a joint): what it stored goes to joint breaks.
     return carried[k] ? StepEnergy{} : released_energy(vanished, vanished.bonded(blocks_.joints));
   });
   std::swap(set_.contacts, found);
@@ -238,12 +239,12 @@ Energies Engine::accept(double dt) {
   const ContactCommit committed = chunked_sum<ContactCommit>(nc, [&](std::int64_t k) {
     Contact& c = set_.contacts[k];
     ContactCommit one;
-    const bool bonded = c.held(blocks_.joints);
-    one.energy = contact_step_energy(c, bonded);
+    const bool held = c.held(blocks_.joints);
+    one.energy = contact_step_energy(c, held);
     double& source = !c.same_line                    ? one.residual.contacts_new
                      : c.state == ContactState::Open ? one.residual.contacts_reclosed
                                                      : one.residual.contacts_kept;
-    source += contact_start_mismatch(c, bonded);
+    source += contact_start_mismatch(c, held);
     one.cohesion_lost = c.cohesion_lost ? 1 : 0;
     commit_contact(c);
     const ContactEnergy stored = contact_energy(c);
