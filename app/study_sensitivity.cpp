@@ -71,11 +71,12 @@ constexpr double kMassDampings[] = {5e3, 1e4, 2.5e4};
 /// the scenes' own model first, then the criterion on the blocks' stress alone, then with ties.
 struct NodeModel {
   const char* suffix;  // of the variant's name ("": the scene as it is)
-  const char* intact_nodes;
-  const char* fracture_load;
+  scene::IntactNodes intact_nodes;
+  scene::FractureLoad fracture_load;
 };
-constexpr NodeModel kNodeModels[] = {
-    {"", "contact", "joint_springs"}, {"-stress", "contact", "block_stress"}, {"-ties", "tie", "block_stress"}};
+constexpr NodeModel kNodeModels[] = {{"", scene::IntactNodes::Contact, scene::FractureLoad::JointSprings},
+                                     {"-stress", scene::IntactNodes::Contact, scene::FractureLoad::BlockStress},
+                                     {"-ties", scene::IntactNodes::Tie, scene::FractureLoad::BlockStress}};
 constexpr const char* kPlaten = "top_platen";  // the prescribed body of the Brazilian scenes
 constexpr const char* kFamilies[] = {"mesh",      "penalty", "penalty-theta", "timestep",
                                      "slot-tips", "rate",    "damping",       "node-model"};
@@ -232,8 +233,8 @@ class VariantBuilder {
   Variant with_node_model(Variant v, const NodeModel& model) const {
     if (*model.suffix == '\0') return v;
     v.name += model.suffix;
-    v.tables["analysis"]["intact_nodes"] = fmt::format("\"{}\"", model.intact_nodes);
-    v.tables["analysis"]["fracture_load"] = fmt::format("\"{}\"", model.fracture_load);
+    v.tables["analysis"]["intact_nodes"] = fmt::format("\"{}\"", scene::to_string(model.intact_nodes));
+    v.tables["analysis"]["fracture_load"] = fmt::format("\"{}\"", scene::to_string(model.fracture_load));
     return v;
   }
 

@@ -97,8 +97,7 @@ std::vector<JointForce> Engine::joint_forces() const {
   return f;
 }
 
-std::vector<JointForce> Engine::fracture_loads() const {
-  std::vector<JointForce> f = joint_forces();
+std::vector<JointForce> Engine::fracture_loads(std::vector<JointForce> f) const {
   if (scene_.analysis.fracture_load != scene::FractureLoad::BlockStress) return f;
   const auto& js = blocks_.joints;
   const auto nj = static_cast<std::int64_t>(js.size());
@@ -127,7 +126,7 @@ std::vector<FailureRatios> Engine::joint_ratios(const std::vector<JointForce>& f
 
 std::vector<double> Engine::joint_utilisation() const {
   std::vector<double> u(blocks_.block_count(), kNoVirtualJoints);
-  const std::vector<FailureRatios> ratio = joint_ratios(fracture_loads());
+  const std::vector<FailureRatios> ratio = joint_ratios(fracture_loads(joint_forces()));
   for (std::size_t j = 0; j < ratio.size(); ++j) {
     const double r = ratio[j].largest();  // 0 for a broken joint: its blocks had joints
     const Joint& jt = blocks_.joints[j];
@@ -141,7 +140,7 @@ std::size_t Engine::fracture_check() {
   auto& js = blocks_.joints;
   if (js.empty()) return 0;
   // Judged against the state of the step; nothing is changed until all are judged.
-  const std::vector<FailureRatios> ratio = joint_ratios(fracture_loads());
+  const std::vector<FailureRatios> ratio = joint_ratios(fracture_loads(joint_forces()));
   std::size_t n = 0;
   for (std::size_t j = 0; j < js.size(); ++j) {
     if (!ratio[j].broken()) continue;

@@ -16,10 +16,6 @@ namespace {
 
 const char* mode_name(scene::Mode m) { return m == scene::Mode::Dynamic ? "dynamic" : "static"; }
 const char* plane_name(scene::PlaneModel p) { return p == scene::PlaneModel::Stress ? "stress" : "strain"; }
-const char* intact_nodes_name(scene::IntactNodes n) { return n == scene::IntactNodes::Tie ? "tie" : "contact"; }
-const char* fracture_load_name(scene::FractureLoad l) {
-  return l == scene::FractureLoad::BlockStress ? "block_stress" : "joint_springs";
-}
 
 }  // namespace
 
@@ -178,8 +174,8 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
                 {"pair_list_skin_factor", an.pair_list_skin_factor},
                 {"solver_tolerance", an.solver_tolerance},
                 {"mass_damping", an.mass_damping},
-                {"intact_nodes", intact_nodes_name(an.intact_nodes)},
-                {"fracture_load", fracture_load_name(an.fracture_load)},
+                {"intact_nodes", scene::to_string(an.intact_nodes)},
+                {"fracture_load", scene::to_string(an.fracture_load)},
                 {"blocks", e.blocks().block_count()},
                 {"virtual_joints", e.blocks().joints.size()}};
   j["threads"] = o.threads;
@@ -322,7 +318,7 @@ std::string vtu_document(const Engine& e) {
 std::string joints_document(const Engine& e) {
   const std::vector<Joint>& joints = e.blocks().joints;
   const std::vector<JointForce> f = e.joint_forces();
-  const std::vector<FailureRatios> ratio = e.joint_ratios(e.fracture_loads());
+  const std::vector<FailureRatios> ratio = e.joint_ratios(e.fracture_loads(f));
   std::vector<std::size_t> carrying;
   for (std::size_t j = 0; j < joints.size(); ++j)
     if (f[j].judged(joints[j])) carrying.push_back(j);

@@ -99,10 +99,14 @@ Analysis parse_analysis(TableReader t) {
   if (auto n = t.integer("open_close_max", 1, 50, Need::Optional)) a.open_close_max = static_cast<int>(*n);
   if (auto solver = t.choice("solver", {"pcg", "direct"}, Need::Optional))
     a.solver = *solver == "direct" ? Solver::Direct : Solver::Pcg;
-  if (auto nodes = t.choice("intact_nodes", {"contact", "tie"}, Need::Optional))
-    a.intact_nodes = *nodes == "tie" ? IntactNodes::Tie : IntactNodes::Contact;
-  if (auto load = t.choice("fracture_load", {"joint_springs", "block_stress"}, Need::Optional))
-    a.fracture_load = *load == "block_stress" ? FractureLoad::BlockStress : FractureLoad::JointSprings;
+  if (auto nodes =
+          t.choice("intact_nodes", {to_string(IntactNodes::Contact), to_string(IntactNodes::Tie)}, Need::Optional))
+    a.intact_nodes = *nodes == to_string(IntactNodes::Tie) ? IntactNodes::Tie : IntactNodes::Contact;
+  if (auto load =
+          t.choice("fracture_load", {to_string(FractureLoad::JointSprings), to_string(FractureLoad::BlockStress)},
+                   Need::Optional))
+    a.fracture_load =
+        *load == to_string(FractureLoad::BlockStress) ? FractureLoad::BlockStress : FractureLoad::JointSprings;
   if (auto tol = t.number("solver_tolerance",
                           NumberRule::closed(kSmallestSolverTolerance, kLargestSolverTolerance,
                                              "PCG's relative residual |b - K·x| / |b|"),

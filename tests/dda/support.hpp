@@ -62,4 +62,25 @@ inline void add_rectangle(meshes::Mesh& m, const std::string& name, double x0, d
   add_polygon(m, name, {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
 }
 
+/// A bar L x H of nx x ny squares, each split into two triangles (shared nodes, one body "rock");
+/// node (i, j), at (L·i/nx, H·j/ny), is number j·(nx + 1) + i.
+inline meshes::Mesh triangulated_bar(double length, double height, int nx, int ny) {
+  meshes::Mesh m;
+  m.body_names = {"rock"};
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) m.nodes.push_back({length * i / nx, height * j / ny});
+  auto node = [&](int i, int j) { return static_cast<meshes::Index>(j * (nx + 1) + i); };
+  m.cell_offsets = {0};
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      for (const auto& tri : {std::vector<meshes::Index>{node(i, j), node(i + 1, j), node(i + 1, j + 1)},
+                              std::vector<meshes::Index>{node(i, j), node(i + 1, j + 1), node(i, j + 1)}}) {
+        m.cell_nodes.insert(m.cell_nodes.end(), tri.begin(), tri.end());
+        m.cell_offsets.push_back(static_cast<meshes::Index>(m.cell_nodes.size()));
+        m.cell_body.push_back(0);
+      }
+    }
+  return m;
+}
+
 }  // namespace ddafrac::dda::testing

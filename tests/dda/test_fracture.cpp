@@ -20,6 +20,7 @@
 
 using namespace ddafrac;
 using namespace ddafrac::dda;
+using testing::triangulated_bar;
 
 namespace {
 
@@ -276,26 +277,6 @@ BOOST_AUTO_TEST_CASE(type_follows_the_larger_ratio) {
 }
 
 namespace {
-/// A bar L x H of nx x ny squares, each split into two triangles (shared nodes, one body).
-meshes::Mesh triangulated_bar(double length, double height, int nx, int ny) {
-  meshes::Mesh m;
-  m.body_names = {"rock"};
-  for (int j = 0; j <= ny; ++j)
-    for (int i = 0; i <= nx; ++i) m.nodes.push_back({length * i / nx, height * j / ny});
-  auto node = [&](int i, int j) { return static_cast<meshes::Index>(j * (nx + 1) + i); };
-  m.cell_offsets = {0};
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      for (const auto& tri : {std::vector<meshes::Index>{node(i, j), node(i + 1, j), node(i + 1, j + 1)},
-                              std::vector<meshes::Index>{node(i, j), node(i + 1, j + 1), node(i, j + 1)}}) {
-        m.cell_nodes.insert(m.cell_nodes.end(), tri.begin(), tri.end());
-        m.cell_offsets.push_back(static_cast<meshes::Index>(m.cell_nodes.size()));
-        m.cell_body.push_back(0);
-      }
-    }
-  return m;
-}
-
 /// E_eff of the glued bar in static tension: σ over the strain between two interior sections.
 double effective_modulus(double young, double kn) {
   const double length = 0.1, height = 0.01, sigma = 1e6;

@@ -171,19 +171,8 @@ struct PulledBar {
 };
 
 Engine pulled_bar(const PulledBar& b, scene::IntactNodes nodes, scene::FractureLoad load) {
-  meshes::Mesh m;
-  m.body_names = {"rock"};
-  for (int j = 0; j <= b.ny; ++j)
-    for (int i = 0; i <= b.nx; ++i) m.nodes.push_back({b.length * i / b.nx, b.height * j / b.ny});
-  auto node = [&](int i, int j) { return static_cast<meshes::Index>(j * (b.nx + 1) + i); };
-  for (int j = 0; j < b.ny; ++j)
-    for (int i = 0; i < b.nx; ++i)
-      for (const auto& tri : {std::vector<meshes::Index>{node(i, j), node(i + 1, j), node(i + 1, j + 1)},
-                              std::vector<meshes::Index>{node(i, j), node(i + 1, j + 1), node(i, j + 1)}}) {
-        m.cell_nodes.insert(m.cell_nodes.end(), tri.begin(), tri.end());
-        m.cell_offsets.push_back(static_cast<meshes::Index>(m.cell_nodes.size()));
-        m.cell_body.push_back(0);
-      }
+  const meshes::Mesh m = testing::triangulated_bar(b.length, b.height, b.nx, b.ny);
+  auto node = [&](int i, int j) { return static_cast<std::size_t>(j * (b.nx + 1) + i); };  // its node numbering
   const double kn = 1e11;  // N/m, 10 E
   scene::Scene sc = testing::basic_scene(scene::Mode::Static, 1.0, kn, {0.0, 0.0});
   scene::JointSet rock;
@@ -211,7 +200,7 @@ Engine pulled_bar(const PulledBar& b, scene::IntactNodes nodes, scene::FractureL
       copies[n].push_back(static_cast<Index>(c));
     }
   for (int j = 0; j <= b.ny; ++j) {
-    const auto n = static_cast<std::size_t>(node(b.nx, j));
+    const std::size_t n = node(b.nx, j);
     const double share = (j == 0 || j == b.ny ? 0.5 : 1.0) * b.sigma * b.height / b.ny;  // N/m
     const meshes::Point& p = m.nodes[n];
     for (const Index block : copies[n])
@@ -223,7 +212,7 @@ Engine pulled_bar(const PulledBar& b, scene::IntactNodes nodes, scene::FractureL
 /// The criterion's r1 of the joints across the bar (normal along x) in its middle half, away
 /// from the held and the pulled end.
 std::vector<double> cross_joint_ratios(const Engine& e, const PulledBar& b) {
-  const std::vector<FailureRatios> ratio = e.joint_ratios(e.fracture_loads());
+  const std::vector<FailureRatios> ratio = e.joint_ratios(e.fracture_loads(e.joint_forces()));
   std::vector<double> out;
   for (std::size_t j = 0; j < e.blocks().joints.size(); ++j) {
     const Joint& jt = e.blocks().joints[j];

@@ -193,10 +193,11 @@ class Engine {
   const CrackCounts& crack_counts() const { return crack_counts_; }
   /// Current forces of every joint from the contacts of the last accepted step (parallel).
   std::vector<JointForce> joint_forces() const;
-  /// What the fracture check judges each joint on (analysis.fracture_load): its forces
-  /// (joint_forces), or for the joints it judges their blocks' stress load (stress_traction).
-  std::vector<JointForce> fracture_loads() const;
-  /// Failure ratios of every joint under the loads `f` of fracture_loads() (zero for broken joints
+  /// What the fracture check judges each joint on (analysis.fracture_load), from the `forces` of
+  /// joint_forces(): those forces, or for the joints it judges their blocks' stress load
+  /// (stress_traction).
+  std::vector<JointForce> fracture_loads(std::vector<JointForce> forces) const;
+  /// Failure ratios of every joint under the loads `f` of fracture_loads (zero for broken joints
   /// and joints without contacts), judged in parallel: what the fracture check breaks on.
   std::vector<FailureRatios> joint_ratios(const std::vector<JointForce>& f) const;
   /// Per block, the largest failure ratio max(r1, r2) of its intact virtual joints in the state of

@@ -50,12 +50,16 @@ using common::PlaneModel;
 enum class Mode { Dynamic, Static };
 enum class Solver { Pcg, Direct };  // block-Jacobi PCG, or a sparse direct factorisation
 /// How the copies of a mesh node are held in two blocks of one body that meet only at that node
-/// (not along a virtual joint): by a unilateral frictionless contact, or, while every virtual
-/// joint at the node is intact, tied by a bilateral isotropic spring (docs/design.md §4.6).
+/// (not along a virtual joint): by a unilateral frictionless contact, or, while intact virtual
+/// joints at the node connect the two blocks around it, tied by a bilateral isotropic spring
+/// (docs/design.md §4.6).
 enum class IntactNodes { Contact, Tie };
 /// What the fracture check judges an intact virtual joint on: the forces of its own springs, or
 /// the load the mean stress of its two blocks puts on it (docs/design.md §5).
 enum class FractureLoad { JointSprings, BlockStress };
+/// Their names in a scene file (analysis.intact_nodes, analysis.fracture_load).
+const char* to_string(IntactNodes nodes);
+const char* to_string(FractureLoad load);
 
 struct Analysis {
   Mode mode = Mode::Dynamic;
