@@ -197,6 +197,12 @@ void Engine::detect() {
     // A vanished tie is released (never bonded to a joint): what it stored goes to joint breaks.
     return carried[k] ? StepEnergy{} : released_energy(vanished, vanished.bonded(blocks_.joints));
   });
+  for (std::size_t k = 0; ties && k < carried.size(); ++k) {
+    const Contact& vanished = previous[k];
+    if (!carried[k] && vanished.tied &&
+        tie_groups.tied(vanished.vertex, vanished.ref_t == 0.0 ? vanished.edge0 : vanished.edge1))
+      ++stats_.ties_lost;
+  }
   std::swap(set_.contacts, found);
   build_contact_topology(set_, blocks_.block_count());
   if (nc > 0) active_.contacts = true;

@@ -29,7 +29,7 @@ namespace ddafrac::dda {
 // A field added to one of these records must be added to its function below as well, or a
 // resumed run silently starts from its default: the sizes make the compiler say so.
 static_assert(sizeof(Contact) == 232, "Contact changed: update serialize(Contact) in engine_state.cpp");
-static_assert(sizeof(Statistics) == 208, "Statistics changed: update serialize(Statistics)");
+static_assert(sizeof(Statistics) == 216, "Statistics changed: update serialize(Statistics)");
 static_assert(sizeof(Joint) == 40, "Joint changed: update serialize(Joint)");
 
 template <class Archive>
@@ -92,7 +92,7 @@ void serialize(Archive& a, Statistics& s, unsigned) {
   a& s.steps& s.dt_min& s.dt_max& s.dt_sum& s.cuts_displacement& s.cuts_open_close& s.cuts_solver;
   a& s.open_close_total& s.open_close_max& s.solves& s.cg_total& s.cg_max& s.max_penetration;
   a& s.cohesion_failures& s.missed_contacts& s.deepest_missed& s.initial_overlaps& s.deepest_initial_overlap;
-  a& s.pair_list_builds& s.times;
+  a& s.pair_list_builds& s.ties_lost& s.times;
 }
 
 template <class Archive>

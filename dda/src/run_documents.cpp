@@ -236,6 +236,7 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
   j["max_penetration"] = st.max_penetration;
   j["cohesion_failures"] = st.cohesion_failures;
   j["missed_contacts"] = {{"count", st.missed_contacts}, {"deepest_m", st.deepest_missed}};
+  j["ties_lost"] = st.ties_lost;
   j["initial_overlaps"] = {{"count", st.initial_overlaps}, {"deepest_m", st.deepest_initial_overlap}};
   j["contacts"] = e.contacts().contacts.size();
   j["active_terms"] = e.active_terms().names();

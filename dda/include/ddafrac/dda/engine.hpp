@@ -134,6 +134,10 @@ struct Statistics {
   long initial_overlaps = 0;
   double deepest_initial_overlap = 0.0;  // m
   long pair_list_builds = 0;             // contact pair list (Verlet list) builds
+  // Ties (scene::IntactNodes::Tie) whose contact vanished from detection while intact joints at
+  // their node still connected their two blocks: the tie was released for geometry alone (the
+  // contact's line no longer ends at the other copy), and its energy was booked as a joint break.
+  long ties_lost = 0;
   PhaseTimes times;
 };
 
