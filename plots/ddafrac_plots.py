@@ -197,6 +197,15 @@ def draw_pattern(axes, path, limit=None):
     return draw_snapshot(axes, read_vtu(path), limit)
 
 
+def share_sigma1_scale(figure, axes, collections):
+    """One σ1 colour scale for a grid of patterns (draw_pattern's collections), the widest of
+    theirs, so that the panels compare; and its colour bar beside the grid."""
+    limit = max(c.get_clim()[1] for c in collections)
+    for c in collections:
+        c.set_clim(-limit, limit)
+    figure.colorbar(collections[0], ax=axes, shrink=0.6, label="σ1 (MPa, tension positive)")
+
+
 def draw_snapshot(axes, snapshot, limit=None, field="sigma1"):
     """Blocks of a snapshot (read_vtu) coloured by a cell field with the broken joints drawn over
     them: σ1 (MPa, blue to red about zero up to `limit`, by default its 99th percentile) or

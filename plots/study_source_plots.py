@@ -129,11 +129,7 @@ def draw_patterns(h, series, cases, times, out_dir, save):
     if not collections:
         plt.close(figure)
         return
-    # One colour scale for the grid, so that the panels compare: the widest of theirs.
-    limit = max(c.get_clim()[1] for c in collections)
-    for c in collections:
-        c.set_clim(-limit, limit)
-    figure.colorbar(collections[0], ax=axes, shrink=0.6, label="σ1 (MPa, tension positive)")
+    h.share_sigma1_scale(figure, axes, collections)
     save(figure, os.path.join(out_dir, f"patterns_{series}.png"))
 
 
@@ -217,10 +213,7 @@ def draw_brazilian_patterns(h, series, runs, out_dir, save):
             a.set_title(f"{case}, {label}\n{time * MICROSECONDS:.0f} µs, platen travel "
                         f"{speed * time * MILLIMETRES:.3f} mm", fontsize="small")
             collections.append(h.draw_pattern(a, path))
-    limit = max(c.get_clim()[1] for c in collections)
-    for c in collections:
-        c.set_clim(-limit, limit)
-    figure.colorbar(collections[0], ax=axes, shrink=0.6, label="σ1 (MPa, tension positive)")
+    h.share_sigma1_scale(figure, axes, collections)
     save(figure, os.path.join(out_dir, f"patterns_{series}.png"))
 
 
