@@ -10,6 +10,8 @@ summary.json, scene.resolved.toml, history.csv, gauges.csv and loading.csv, and 
                                 parameter, the observed convergence orders (mesh), the indirect
                                 tensile strength of every Brazilian run, and computed verdicts
     figures/mesh.png            case 4's crack measures against its block count
+    figures/mesh_patterns_case04.png, figures/mesh_patterns_flattened.png
+                                the crack patterns over σ1 at the end of each mesh's run
     figures/penalty.png         case 4's crack measures and gauge σ1 peaks against kn/E
     figures/timestep.png        case 4's crack measures against dt_max
     figures/slot_tips.png       case 4's crack measures against the element size at the slot's ends
@@ -307,6 +309,24 @@ def draw_measures(runs, x, xlabel, logx, title, path, save):
     save(figure, path)
 
 
+def draw_end_patterns(h, runs, title, path, save):
+    """A panel per run, in the order given: its crack pattern over σ1 at its last snapshot, one
+    colour scale for all, so that what the mesh changes in where cracks run shows at a glance."""
+    panels = [(run, snapshots[-1]) for run, snapshots in ((r, h.read_snapshots(r["dir"])) for r in runs) if snapshots]
+    if not panels:
+        return
+    figure, axes = plt.subplots(1, len(panels), figsize=(3.6 * len(panels), 4.0), squeeze=False)
+    collections = []
+    for a, (run, (time, snapshot)) in zip(axes[0], panels):
+        a.set_xticks([])
+        a.set_yticks([])
+        a.set_title(f"{run['blocks']} blocks, {h.time_label(time)}", fontsize="small")
+        collections.append(h.draw_pattern(a, snapshot))
+    figure.suptitle(title)
+    h.share_sigma1_scale(figure, axes, collections)
+    save(figure, path)
+
+
 def mesh_section(h, runs, figures, save):
     impact = sorted([r for r in runs if r["case"].startswith(GAUGE_CASE)], key=lambda r: r["blocks"])
     discs = sorted([r for r in runs if not r["case"].startswith(GAUGE_CASE)], key=lambda r: r["blocks"])
@@ -316,10 +336,14 @@ def mesh_section(h, runs, figures, save):
         md += observed_orders(impact, lambda r: r["blocks"] ** -0.5, "meshes") + "\n"
         draw_measures(impact, lambda r: r["blocks"], "blocks", True, "case 4 against its mesh",
                       os.path.join(figures, "mesh.png"), save)
+        draw_end_patterns(h, impact, "case 4: cracks at the end, per mesh",
+                          os.path.join(figures, "mesh_patterns_case04.png"), save)
     if discs:
         md += "Flattened disc:\n\n" + brazilian_table(h, discs, "blocks", lambda r: r["blocks"], "{:.0f}") + "\n"
         md += measure_table(discs, "blocks", lambda r: r["blocks"], "{:.0f}") + "\n"
         md += observed_orders(discs, lambda r: r["blocks"] ** -0.5, "meshes") + "\n"
+        draw_end_patterns(h, discs, "flattened disc: cracks at the end, per mesh",
+                          os.path.join(figures, "mesh_patterns_flattened.png"), save)
         for what, force in (("Peak force", lambda r: peak_force(r)[0] if peak_force(r) else None),
                             ("Largest force up to the first crack", lambda r: force_to_first_crack(h, r, first_crack(h, r)))):
             forces = [f for f in map(force, discs) if f is not None]
