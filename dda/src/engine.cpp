@@ -102,6 +102,8 @@ Engine::Engine(scene::Scene scene, const meshes::Mesh& mesh, EngineOptions optio
   active_.fracture = !blocks_.joints.empty();
   active_.damping = an.mass_damping > 0.0;
   if (!active_.dynamic) std::fill(blocks_.velocity.begin(), blocks_.velocity.end(), Vec6::Zero());
+  if (an.fracture_stress_radius > 0.0)
+    stress_neighbourhoods_ = stress_neighbourhoods(blocks_, an.fracture_stress_radius);
 }
 
 std::string Engine::describe_block(Index b) const {

@@ -27,6 +27,12 @@ FailureRatios failure_ratios(const JointForce& f, double length, const scene::Jo
 }
 
 JointForce stress_traction(const BlockSystem& blocks, const Joint& j) {
+  return stress_traction(
+      blocks, j,
+      0.5 * (blocks.stress[static_cast<std::size_t>(j.block_a)] + blocks.stress[static_cast<std::size_t>(j.block_b)]));
+}
+
+JointForce stress_traction(const BlockSystem& blocks, const Joint& j, const Vec3& s) {
   const meshes::Point t = blocks.joint_tangent(j);
   const double tx = t.x, ty = t.y;
   // Outward from block_a: away from its centroid (its blocks are convex).
@@ -34,8 +40,6 @@ JointForce stress_traction(const BlockSystem& blocks, const Joint& j) {
   const PolygonIntegrals& a = blocks.geometry[static_cast<std::size_t>(j.block_a)];
   const double sign = ty * (mid.x - a.cx) - tx * (mid.y - a.cy) >= 0.0 ? 1.0 : -1.0;
   const double nx = sign * ty, ny = -sign * tx;
-  const Vec3 s = 0.5 * (blocks.stress[static_cast<std::size_t>(j.block_a)] +
-                        blocks.stress[static_cast<std::size_t>(j.block_b)]);  // (σxx, σyy, τxy)
   const double fx = (s[0] * nx + s[2] * ny) * j.length, fy = (s[2] * nx + s[1] * ny) * j.length;
   JointForce f;
   f.normal = fx * nx + fy * ny;
@@ -105,7 +109,9 @@ std::vector<JointForce> Engine::fracture_loads(std::vector<JointForce> f) const 
   for (std::int64_t j = 0; j < nj; ++j) {
     if (!f[j].judged(js[j])) continue;
     const int contacts = f[j].contacts;
-    f[j] = stress_traction(blocks_, js[j]);
+    f[j] = stress_neighbourhoods_.blocks.empty()
+               ? stress_traction(blocks_, js[j])
+               : stress_traction(blocks_, js[j], neighbourhood_stress(blocks_, stress_neighbourhoods_, j));
     f[j].contacts = contacts;
   }
   return f;

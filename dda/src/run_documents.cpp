@@ -176,6 +176,7 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
                 {"mass_damping", an.mass_damping},
                 {"intact_nodes", scene::to_string(an.intact_nodes)},
                 {"fracture_load", scene::to_string(an.fracture_load)},
+                {"fracture_stress_radius", an.fracture_stress_radius},
                 {"blocks", e.blocks().block_count()},
                 {"virtual_joints", e.blocks().joints.size()}};
   j["threads"] = o.threads;

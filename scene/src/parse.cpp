@@ -107,6 +107,16 @@ Analysis parse_analysis(TableReader t) {
                    Need::Optional))
     a.fracture_load =
         *load == to_string(FractureLoad::BlockStress) ? FractureLoad::BlockStress : FractureLoad::JointSprings;
+  if (auto radius = t.number("fracture_stress_radius",
+                             NumberRule::non_negative("m, radius of the blocks whose mean stress judges a joint"),
+                             Need::Optional)) {
+    a.fracture_stress_radius = *radius;
+    if (a.fracture_stress_radius > 0.0 && a.fracture_load != FractureLoad::BlockStress)
+      t.problem("fracture_stress_radius",
+                fmt::format("averages the blocks' stress the criterion judges: it needs analysis.fracture_load = "
+                            "\"{}\"",
+                            to_string(FractureLoad::BlockStress)));
+  }
   if (auto tol = t.number("solver_tolerance",
                           NumberRule::closed(kSmallestSolverTolerance, kLargestSolverTolerance,
                                              "PCG's relative residual |b - K·x| / |b|"),

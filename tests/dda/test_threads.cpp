@@ -27,12 +27,13 @@ std::string slurp(const fs::path& p) {
 }
 
 fs::path run_with_threads(int threads, const fs::path& root, scene::IntactNodes nodes = scene::IntactNodes::Contact,
-                          scene::FractureLoad load = scene::FractureLoad::JointSprings) {
+                          scene::FractureLoad load = scene::FractureLoad::JointSprings, double stress_radius = 0.0) {
   omp_set_num_threads(threads);
   const meshes::Mesh mesh = make_ring_disc_mesh(0.1, 2000);
   scene::Scene s = make_impact_scene(3.5, 1e-3);
   s.analysis.intact_nodes = nodes;
   s.analysis.fracture_load = load;
+  s.analysis.fracture_stress_radius = stress_radius;
   Engine e(s, mesh);
   RunOptions o;
   o.out_dir = root / ("threads" + std::to_string(threads) + (nodes == scene::IntactNodes::Tie ? "-ties" : ""));
@@ -62,11 +63,12 @@ BOOST_AUTO_TEST_CASE(one_and_two_threads_are_bit_identical) {
 }
 
 // The same with the copies of intact fans' nodes tied and the fracture criterion on the blocks'
-// stress (analysis.intact_nodes, analysis.fracture_load).
+// stress averaged over a radius (analysis.intact_nodes, fracture_load, fracture_stress_radius).
 BOOST_AUTO_TEST_CASE(one_and_two_threads_are_bit_identical_with_ties_and_the_stress_criterion) {
   const fs::path root = fs::temp_directory_path() / ("ddafrac-dda-threads-ties-" + std::to_string(::getpid()));
-  const fs::path a = run_with_threads(1, root, scene::IntactNodes::Tie, scene::FractureLoad::BlockStress);
-  const fs::path b = run_with_threads(2, root, scene::IntactNodes::Tie, scene::FractureLoad::BlockStress);
+  constexpr double radius = 3e-3;  // m: about seven blocks of the 2000-block disc per joint
+  const fs::path a = run_with_threads(1, root, scene::IntactNodes::Tie, scene::FractureLoad::BlockStress, radius);
+  const fs::path b = run_with_threads(2, root, scene::IntactNodes::Tie, scene::FractureLoad::BlockStress, radius);
   const std::string ha = slurp(a / "history.csv"), hb = slurp(b / "history.csv");
   BOOST_TEST(ha.size() > 1000u);
   BOOST_TEST((ha == hb));

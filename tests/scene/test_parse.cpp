@@ -226,6 +226,20 @@ BOOST_AUTO_TEST_CASE(an_unknown_node_rule_or_fracture_load_is_refused_with_the_c
                  "analysis.fracture_load", 11, "block_stress");
 }
 
+BOOST_AUTO_TEST_CASE(a_stress_radius_needs_the_stress_criterion_and_no_sign) {
+  BOOST_TEST(scene::parse_scene(kValid, "ok.toml").analysis.fracture_stress_radius == 0.0);
+  const scene::Scene s = scene::parse_scene(
+      replaced(kValid, "gravity = [0.0, -9.81]",
+               "gravity = [0.0, -9.81]\nfracture_load = \"block_stress\"\nfracture_stress_radius = 0.003"),
+      "ok.toml");
+  BOOST_TEST(s.analysis.fracture_stress_radius == 0.003);
+  expect_problem(replaced(kValid, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nfracture_stress_radius = 0.003"),
+                 "analysis.fracture_stress_radius", 11, "needs analysis.fracture_load = \"block_stress\"");
+  expect_problem(replaced(kValid, "gravity = [0.0, -9.81]",
+                          "gravity = [0.0, -9.81]\nfracture_load = \"block_stress\"\nfracture_stress_radius = -1"),
+                 "analysis.fracture_stress_radius", 12, "got -1");
+}
+
 BOOST_AUTO_TEST_CASE(mass_damping_is_off_unless_given) {
   BOOST_TEST(scene::parse_scene(kValid, "ok.toml").analysis.mass_damping == 0.0);
   const scene::Scene s = scene::parse_scene(

@@ -14,6 +14,7 @@
 #include "ddafrac/dda/contact_mechanics.hpp"
 #include "ddafrac/dda/energy_ledger.hpp"
 #include "ddafrac/dda/linear_system.hpp"
+#include "ddafrac/dda/stress_average.hpp"
 #include "ddafrac/meshes/mesh.hpp"
 #include "ddafrac/scene/scene.hpp"
 
@@ -69,6 +70,8 @@ struct JointForce {
 /// is the joint's load: the joint's own forces differ from it by what other contacts carry past
 /// the joint (docs/design.md §5).
 JointForce stress_traction(const BlockSystem& blocks, const Joint& j);
+/// The load a stress σ = (σxx, σyy, τxy) puts on joint j, as stress_traction.
+JointForce stress_traction(const BlockSystem& blocks, const Joint& j, const Vec3& stress);
 
 /// How much of the load their blocks' stress puts on the intact virtual joints (stress_traction)
 /// the joints carry themselves: the least-squares slope of their forces on those loads over every
@@ -309,6 +312,9 @@ class Engine {
   std::vector<CrackEvent> cracks_;
   CrackCounts crack_counts_;
   std::vector<Index> gauge_blocks_;
+  // The blocks the fracture criterion averages per joint (analysis.fracture_stress_radius > 0),
+  // from the geometry at t = 0; empty otherwise.
+  StressNeighbourhoods stress_neighbourhoods_;
 };
 
 }  // namespace ddafrac::dda

@@ -81,6 +81,12 @@ struct Analysis {
   double mass_damping = 0.0;
   IntactNodes intact_nodes = IntactNodes::Contact;
   FractureLoad fracture_load = FractureLoad::JointSprings;
+  // With FractureLoad::BlockStress, m: 0 judges a joint on the mean stress of its two blocks;
+  // above, on the area-weighted mean stress of its body's blocks whose centroids lie within this
+  // radius of the joint's midpoint at t = 0 (its two blocks always among them). A material length
+  // that does not shrink with the blocks, as a strength criterion at a crack tip needs to give the
+  // same crack on every mesh (docs/design.md §5).
+  double fracture_stress_radius = 0.0;
 };
 
 struct Gauge {
