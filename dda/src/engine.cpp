@@ -32,6 +32,17 @@ struct ContactCommit {
   }
 };
 
+/// What the contacts that vanished at a detection add up to (Engine::detect).
+struct VanishedContacts {
+  StepEnergy released;
+  long ties_lost = 0;
+  VanishedContacts& operator+=(const VanishedContacts& o) {
+    released += o.released;
+    ties_lost += o.ties_lost;
+    return *this;
+  }
+};
+
 class Timer {
  public:
   explicit Timer(double& sink) : sink_(sink), start_(omp_get_wtime()) {}
@@ -194,17 +205,20 @@ void Engine::detect() {
     }
     saved_slide_sign_[k] = c.slide_sign;
   }
-  ledger_.total += chunked_sum<StepEnergy>(static_cast<std::int64_t>(carried.size()), [&](std::int64_t k) {
-    const Contact& vanished = previous[k];
-    // A vanished tie is released (never bonded to a joint): what it stored goes to joint breaks.
-    return carried[k] ? StepEnergy{} : released_energy(vanished, vanished.bonded(blocks_.joints));
-  });
-  for (std::size_t k = 0; ties && k < carried.size(); ++k) {
-    const Contact& vanished = previous[k];
-    if (!carried[k] && vanished.tied &&
-        tie_groups.tied(vanished.vertex, vanished.ref_t == 0.0 ? vanished.edge0 : vanished.edge1))
-      ++stats_.ties_lost;
-  }
+  // One pass over the vanished contacts: what they stored, and the ties among them that their
+  // node's joints still held (Statistics::ties_lost).
+  const VanishedContacts vanished_sum =
+      chunked_sum<VanishedContacts>(static_cast<std::int64_t>(carried.size()), [&](std::int64_t k) {
+        const Contact& vanished = previous[k];
+        if (carried[k]) return VanishedContacts{};
+        // A vanished tie is released (never bonded to a joint): what it stored goes to joint breaks.
+        VanishedContacts one{released_energy(vanished, vanished.bonded(blocks_.joints)), 0};
+        if (vanished.tied && tie_groups.tied(vanished.vertex, vanished.ref_t == 0.0 ? vanished.edge0 : vanished.edge1))
+          one.ties_lost = 1;
+        return one;
+      });
+  ledger_.total += vanished_sum.released;
+  stats_.ties_lost += vanished_sum.ties_lost;
   std::swap(set_.contacts, found);
   build_contact_topology(set_, blocks_.block_count());
   if (nc > 0) active_.contacts = true;
