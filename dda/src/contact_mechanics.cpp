@@ -11,13 +11,15 @@ ContactProperties::ContactProperties(const scene::Scene& scene) : scene_(scene) 
 }
 
 void ContactProperties::assign(Contact& c, const BlockSystem& blocks, Index tie_set) const {
-  const Index set = c.bonded(blocks.joints) ? blocks.joints[static_cast<std::size_t>(c.joint)].joint_set
-                    : c.tied                ? tie_set
-                                            : static_cast<Index>(scene_.real_joints);
+  const bool bonded = c.bonded(blocks.joints);
+  const Index set = bonded   ? blocks.joints[static_cast<std::size_t>(c.joint)].joint_set
+                    : c.tied ? tie_set
+                             : static_cast<Index>(scene_.real_joints);
   c.joint_set = set;
   const scene::JointSet& js = scene_.joint_sets[static_cast<std::size_t>(set)];
+  c.damage = bonded ? blocks.joints[static_cast<std::size_t>(c.joint)].damage : 0.0;
   c.kn = js.normal_stiffness;
-  c.ks = js.shear_stiffness;
+  c.ks = (1.0 - c.damage) * js.shear_stiffness;
   c.tan_phi = tan_phi_[static_cast<std::size_t>(set)];
   c.cohesion = js.cohesion;
   c.tensile_strength = js.tensile_strength;
@@ -106,9 +108,10 @@ ContactCoefficients contact_coefficients(const Contact& c) {
   switch (c.trial) {
     case ContactState::Open: break;
     case ContactState::Locked:
-      k.kn_eff = c.kn;
+      // The side of a softening joint's spring (tension or compression) the latest solve found.
+      k.kn_eff = normal_stiffness(c, c.d_iter);
       k.ks_eff = c.ks;
-      k.fn_rhs = -c.kn * (c.d0 - c.rest_gap);
+      k.fn_rhs = -k.kn_eff * (c.d0 - c.rest_gap);
       k.fs_rhs = -c.ks * c.s0;
       break;
     case ContactState::Sliding:
@@ -167,14 +170,17 @@ bool judge_contact(Contact& c, const ContactLinearisation& lin, const Vec6& dv, 
   const double d = c.d0 + lin.e.dot(dv) + lin.g.dot(de);
   const double s = c.s0 + lin.es.dot(dv) + lin.gs.dot(de);
   ContactState next = ContactState::Locked;
-  double fn = -c.kn * (d - c.rest_gap);
+  double fn = -normal_stiffness(c, d) * (d - c.rest_gap);
+  // A softening joint's spring that crossed between tension and compression needs another solve
+  // with the stiffness of its new side.
+  const bool side_changed = c.damage > 0.0 && (d > c.rest_gap) != (c.d_iter > c.rest_gap);
   if (!bonded) {
     // A cohesive joint that fails stays failed for the rest of the step's iterations (and for
     // good once the step is accepted): the iteration then cannot cycle on its strength.
     if (c.cohesive && !c.cohesion_lost && !cohesion_holds(c, fn, s)) c.cohesion_lost = true;
     if (!c.cohesive || c.cohesion_lost) next = judge_frictional(c, d, s, tol, fn);
   }
-  const bool changed = next != c.trial;
+  const bool changed = next != c.trial || side_changed;
   c.trial = next;
   c.fn_iter = fn;
   c.d_iter = d;

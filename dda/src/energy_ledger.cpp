@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ddafrac/dda/contact_mechanics.hpp"
+
 namespace ddafrac::dda {
 
 Energies& Energies::operator+=(const Energies& o) {
@@ -52,7 +54,7 @@ double sliding_shear_energy(double friction, double ks) { return ks > 0.0 ? 0.5 
 ContactEnergy contact_energy(const Contact& c) {
   ContactEnergy e;
   if (c.trial == ContactState::Open) return e;
-  e.normal = spring_energy(c.kn, c.d_iter - c.rest_gap);
+  e.normal = spring_energy(normal_stiffness(c, c.d_iter), c.d_iter - c.rest_gap);
   if (c.trial == ContactState::Locked)
     e.shear = spring_energy(c.ks, c.s_iter);
   else
@@ -77,7 +79,9 @@ bool closes_from_a_gap(const Contact& c, bool bonded_now) {
 
 double contact_start_mismatch(const Contact& c, bool bonded_now) {
   if (c.trial == ContactState::Open) return 0.0;
-  double mismatch = (closes_from_a_gap(c, bonded_now) ? 0.0 : spring_energy(c.kn, c.d0 - c.rest_gap)) - c.stored_normal;
+  double mismatch =
+      (closes_from_a_gap(c, bonded_now) ? 0.0 : spring_energy(normal_stiffness(c, c.d0), c.d0 - c.rest_gap)) -
+      c.stored_normal;
   if (c.trial == ContactState::Locked) mismatch += spring_energy(c.ks, c.s0) - c.stored_shear;
   return mismatch;
 }
@@ -89,7 +93,7 @@ StepEnergy contact_step_energy(const Contact& c, bool bonded_now) {
   // Normal spring along the linearised step: ½·kn·Δd². The fictitious start energy of a contact
   // that closes from a gap is not the scheme's to dissipate.
   const double dd = c.d_iter - c.d0;
-  e.numerical += 0.5 * c.kn * dd * dd;
+  e.numerical += 0.5 * normal_stiffness(c, c.d_iter) * dd * dd;
   if (closes_from_a_gap(c, bonded_now)) e.numerical -= spring_energy(c.kn, c.d0 - c.rest_gap);
   if (c.trial == ContactState::Locked) {
     const double ds = c.s_iter - c.s0;

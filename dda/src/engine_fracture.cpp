@@ -7,7 +7,9 @@
 #include <limits>
 
 #include "ddafrac/dda/contact_mechanics.hpp"
+#include "ddafrac/dda/energy_ledger.hpp"
 #include "ddafrac/dda/geometry.hpp"
+#include "ddafrac/dda/softening.hpp"
 #include "deterministic_sum.hpp"
 
 namespace ddafrac::dda {
@@ -92,6 +94,8 @@ std::vector<JointForce> Engine::joint_forces() const {
       const double proj = (ux * tx + uy * ty) / std::hypot(ux, uy);
       JointForce& out = f[static_cast<std::size_t>(c.joint)];
       out.normal -= c.normal_force;  // compression positive per contact -> tension positive
+      // A softening joint's spring carries tension with (1 − D) of its stiffness.
+      out.normal_undamaged -= c.normal_force < 0.0 ? c.normal_force / (1.0 - c.damage) : c.normal_force;
       // The shear spring pushes the vertex by -shear_force along the edge: on block_a directly
       // when it owns the vertex, as the reaction otherwise.
       out.shear += (c.vblock == jt.block_a ? -1.0 : 1.0) * c.shear_force * proj;
@@ -142,15 +146,58 @@ std::vector<double> Engine::joint_utilisation() const {
   return u;
 }
 
+namespace {
+
+/// Damage of a joint that does not soften (its set has no fracture energy, or it is not judged).
+constexpr double kDoesNotSoften = -1.0;
+
+/// Per joint, its damage after this step if its set softens (JointSet::fracture_energy > 0),
+/// judged on the ratios its springs would carry undamaged, which replace its entry of `ratio`;
+/// kDoesNotSoften for every other joint. Empty if no joint set softens. Each joint its own.
+std::vector<double> softened_damage(const BlockSystem& blocks, const scene::Scene& scene,
+                                    const std::vector<JointForce>& f, std::vector<FailureRatios>& ratio) {
+  const auto& sets = scene.joint_sets;
+  if (std::none_of(sets.begin(), sets.end(), [](const scene::JointSet& s) { return s.fracture_energy > 0.0; }))
+    return {};
+  const auto& js = blocks.joints;
+  std::vector<double> damage(js.size(), kDoesNotSoften);
+  const auto nj = static_cast<std::int64_t>(js.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t j = 0; j < nj; ++j) {
+    const Joint& jt = js[j];
+    const scene::JointSet& set = sets[static_cast<std::size_t>(jt.joint_set)];
+    if (!f[j].judged(jt) || set.fracture_energy <= 0.0) continue;
+    JointForce undamaged = f[j];
+    undamaged.normal = f[j].normal_undamaged;
+    undamaged.shear = f[j].shear / (1.0 - jt.damage);
+    ratio[j] = failure_ratios(undamaged, jt.length, set);
+    const double ductility =
+        softening_ductility(set.fracture_energy, set.tensile_strength, f[j].contacts * set.normal_stiffness, jt.length);
+    damage[j] = std::max(jt.damage, softening_damage(ratio[j].largest(), ductility));
+  }
+  return damage;
+}
+
+}  // namespace
+
 std::size_t Engine::fracture_check() {
   auto& js = blocks_.joints;
   if (js.empty()) return 0;
   // Judged against the state of the step; nothing is changed until all are judged.
-  const std::vector<FailureRatios> ratio = joint_ratios(fracture_loads(joint_forces()));
+  const std::vector<JointForce> forces = joint_forces();
+  std::vector<FailureRatios> ratio = joint_ratios(fracture_loads(forces));
+  const std::vector<double> damage = softened_damage(blocks_, scene_, forces, ratio);
   std::size_t n = 0;
+  bool softened = false;
   for (std::size_t j = 0; j < js.size(); ++j) {
-    if (!ratio[j].broken()) continue;
     Joint& jt = js[j];
+    const bool softens = !damage.empty() && damage[j] != kDoesNotSoften;
+    if (softens && damage[j] < 1.0) {
+      softened = softened || damage[j] > jt.damage;
+      jt.damage = damage[j];
+      continue;
+    }
+    if (!softens && !ratio[j].broken()) continue;
     jt.broken = true;
     jt.failure = ratio[j].type();
     CrackEvent ev;
@@ -170,7 +217,26 @@ std::size_t Engine::fracture_check() {
       ++crack_counts_.shear;
     ++n;
   }
+  if (softened) ledger_.total.joint_breaks += follow_joint_damage();
   return n;
+}
+
+double Engine::follow_joint_damage() {
+  const auto& js = blocks_.joints;
+  return detail::chunked_sum<double>(static_cast<std::int64_t>(set_.contacts.size()), [&](std::int64_t k) {
+    Contact& c = set_.contacts[k];
+    if (!c.bonded(js) || js[static_cast<std::size_t>(c.joint)].damage == c.damage) return 0.0;
+    const double before = c.stored_normal + c.stored_shear;
+    c.damage = js[static_cast<std::size_t>(c.joint)].damage;
+    c.ks = (1.0 - c.damage) * scene_.joint_sets[static_cast<std::size_t>(c.joint_set)].shear_stiffness;
+    // A bonded contact is locked: its forces at the end state with the weakened springs.
+    c.normal_force = c.fn_iter = -normal_stiffness(c, c.d_iter) * (c.d_iter - c.rest_gap);
+    c.shear_force = c.ks * c.s_iter;
+    const ContactEnergy stored = contact_energy(c);
+    c.stored_normal = stored.normal;
+    c.stored_shear = stored.shear;
+    return before - stored.total();
+  });
 }
 
 }  // namespace ddafrac::dda

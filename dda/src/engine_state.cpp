@@ -28,9 +28,9 @@ namespace ddafrac::dda {
 
 // A field added to one of these records must be added to its function below as well, or a
 // resumed run silently starts from its default: the sizes make the compiler say so.
-static_assert(sizeof(Contact) == 232, "Contact changed: update serialize(Contact) in engine_state.cpp");
+static_assert(sizeof(Contact) == 240, "Contact changed: update serialize(Contact) in engine_state.cpp");
 static_assert(sizeof(Statistics) == 216, "Statistics changed: update serialize(Statistics)");
-static_assert(sizeof(Joint) == 40, "Joint changed: update serialize(Joint)");
+static_assert(sizeof(Joint) == 48, "Joint changed: update serialize(Joint)");
 
 template <class Archive>
 void serialize(Archive& a, PolygonIntegrals& g, unsigned) {
@@ -49,7 +49,8 @@ void serialize(Archive& a, PointLoad& p, unsigned) {
 
 template <class Archive>
 void serialize(Archive& a, Joint& j, unsigned) {
-  a& j.block_a& j.block_b& j.node_a& j.node_b& j.vertex_a& j.vertex_b& j.length& j.joint_set& j.broken& j.failure;
+  a& j.block_a& j.block_b& j.node_a& j.node_b& j.vertex_a& j.vertex_b& j.length& j.joint_set& j.broken& j.failure& j
+      .damage;
 }
 
 template <class Archive>
@@ -57,7 +58,7 @@ void serialize(Archive& a, Contact& c, unsigned) {
   a& c.vblock& c.eblock& c.vertex& c.edge0& c.edge1& c.joint& c.joint_set& c.vertex_vertex& c.shared_node& c.tied;
   a& c.state& c.ref_t& c.normal_force& c.shear_force& c.slip& c.slide_sign& c.rest_gap;
   a& c.cohesive& c.cohesive_length& c.stored_normal& c.stored_shear& c.was_bonded;
-  a& c.kn& c.ks& c.tan_phi& c.cohesion& c.tensile_strength;
+  a& c.kn& c.ks& c.tan_phi& c.cohesion& c.tensile_strength& c.damage;
   a& c.d0& c.s0& c.edge_length;
   a& c.trial& c.fn_iter& c.friction_force& c.d_iter& c.s_iter& c.cohesion_lost& c.carried& c.same_line;
 }

@@ -245,6 +245,17 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
   j["cracks"] = {
       {"total", cc.total}, {"tensile", cc.tensile}, {"shear", cc.shear}, {"interval", sc.output.crack_interval}};
   j["crack_metrics"] = crack_metrics_json(e);
+  {
+    // Joints softening past their strength (JointSet::fracture_energy), not yet broken.
+    long softening = 0;
+    double largest = 0.0;
+    for (const Joint& jt : e.blocks().joints)
+      if (!jt.broken && jt.damage > 0.0) {
+        ++softening;
+        largest = std::max(largest, jt.damage);
+      }
+    j["joints_softening"] = {{"count", softening}, {"largest_damage", largest}};
+  }
   if (!e.blocks().joints.empty()) {
     const JointLoadShare share = joint_load_share(e.blocks(), e.joint_forces());
     j["joint_load_share"] = {

@@ -160,7 +160,7 @@ std::vector<Material> parse_materials(TableReader t) {
   return out;
 }
 
-std::vector<JointSet> parse_joint_sets(TableReader t, double default_penalty) {
+std::vector<JointSet> parse_joint_sets(TableReader t, const Analysis& analysis) {
   std::vector<JointSet> out;
   for (const std::string& name : t.entry_names()) {
     TableReader j = t.table(name, Need::Required);
@@ -171,9 +171,22 @@ std::vector<JointSet> parse_joint_sets(TableReader t, double default_penalty) {
     set.cohesion = j.number("cohesion", NumberRule::non_negative("Pa"), Need::Required).value_or(0.0);
     set.tensile_strength = j.number("tensile_strength", NumberRule::non_negative("Pa"), Need::Required).value_or(0.0);
     set.normal_stiffness =
-        j.number("normal_stiffness", NumberRule::positive("N/m"), Need::Optional).value_or(default_penalty);
+        j.number("normal_stiffness", NumberRule::positive("N/m"), Need::Optional).value_or(analysis.penalty);
     set.shear_stiffness = j.number("shear_stiffness", NumberRule::positive("N/m"), Need::Optional)
                               .value_or(kDefaultShearToNormalStiffness * set.normal_stiffness);
+    set.fracture_energy =
+        j.number("fracture_energy", NumberRule::non_negative("J/m^2, 0 for brittle joints"), Need::Optional)
+            .value_or(0.0);
+    // Softening weakens a joint's own springs: it needs them to be what the criterion judges and
+    // to carry the tension across the joint alone.
+    if (set.fracture_energy > 0.0 && analysis.fracture_load != FractureLoad::JointSprings)
+      j.problem("fracture_energy", fmt::format("softens the joint's springs, which the criterion judges only with "
+                                               "analysis.fracture_load = \"{}\"",
+                                               to_string(FractureLoad::JointSprings)));
+    if (set.fracture_energy > 0.0 && analysis.intact_nodes != IntactNodes::Contact)
+      j.problem("fracture_energy", fmt::format("softens the joint's springs, but ties would still hold the blocks "
+                                               "together: it needs analysis.intact_nodes = \"{}\"",
+                                               to_string(IntactNodes::Contact)));
     j.reject_unknown_keys();
     out.push_back(set);
   }
@@ -398,11 +411,15 @@ Scene parse_document(const toml::table& document, const std::filesystem::path& f
   scene.description = top.text(kDescriptionKey, Need::Optional).value_or("");
   scene.analysis = parse_analysis(top.table("analysis", Need::Required));
   scene.materials = parse_materials(top.table("materials", Need::Required));
-  scene.joint_sets = parse_joint_sets(top.table("joints", Need::Required), scene.analysis.penalty);
+  scene.joint_sets = parse_joint_sets(top.table("joints", Need::Required), scene.analysis);
 
   TableReader contacts = top.table("contacts", Need::Required);
   scene.real_joints =
       contacts.reference("real_joints", names_of(scene.joint_sets), "joint sets", Need::Required).value_or(0);
+  if (!scene.joint_sets.empty() && scene.joint_sets[scene.real_joints].fracture_energy > 0.0)
+    contacts.problem("real_joints", fmt::format("joint set \"{}\" has a fracture_energy, which only virtual joints "
+                                                "use (real joints keep a brittle cohesion)",
+                                                scene.joint_sets[scene.real_joints].name));
   contacts.reject_unknown_keys();
 
   ParsedGeometry geometry = parse_geometry(top.table("geometry", Need::Required), file);

@@ -589,3 +589,123 @@ BOOST_AUTO_TEST_CASE(the_ledger_closes_when_a_broken_joints_corners_swap_vertex_
     BOOST_TEST(l.largest_balance_error <= 1e-3, k.name);
   }
 }
+
+namespace {
+
+/// Mean opening of the joint of two_squares (m): the right block's copies of the joint's two nodes
+/// minus the left block's, along x.
+double opening_of_two_squares(const BlockSystem& b) {
+  double sum = 0.0;
+  int copies = 0;
+  for (std::size_t v = 0; v < b.vx.size(); ++v) {
+    const meshes::Index node = b.vertex_node[v];
+    if (node != 1 && node != 4) continue;  // the nodes at x = h
+    const bool right = static_cast<Index>(v) >= b.begin(1);
+    sum += right ? b.vx[v] : -b.vx[v];
+    ++copies;
+  }
+  BOOST_REQUIRE_EQUAL(copies, 4);
+  return sum / 2.0;
+}
+
+/// What a pulled joint of two_squares did until it broke (at most max_steps steps).
+struct SofteningRun {
+  int break_step = -1;
+  double peak = 0.0;                   // largest normal force, N/m
+  double worst_softening_error = 0.0;  // largest |f − f_law(δ)| on the softening branch, N/m
+  double opening_at_break = 0.0;       // m
+  double dissipated = 0.0;             // the ledger's joint breaks after the break took effect, J/m
+  double largest_balance_error = 0.0;
+  std::vector<double> forces;  // normal force per step, N/m
+};
+
+SofteningRun pull_until_broken(const scene::Scene& sc, double h, double speed, int max_steps) {
+  EngineOptions opt;
+  hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
+  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, speed, 0.0);
+  Engine e(sc, two_squares(h), opt);
+  const scene::JointSet& js = sc.joint_sets[0];
+  const double strength = js.tensile_strength * h;                              // σt·l, N/m
+  const double peak_opening = strength / (2.0 * js.normal_stiffness);           // δ0: two springs
+  const double spent_opening = 2.0 * js.fracture_energy / js.tensile_strength;  // δc
+  SofteningRun r;
+  for (int k = 1; k <= max_steps; ++k) {
+    const StepReport rep = e.step();
+    const double f = e.joint_forces().at(0).normal;
+    const double opening = opening_of_two_squares(e.blocks());
+    if (rep.new_cracks > 0) {
+      r.break_step = k;
+      r.opening_at_break = opening;
+      break;
+    }
+    r.forces.push_back(f);
+    r.peak = std::max(r.peak, f);
+    if (e.blocks().joints[0].damage > 0.0 && opening < spent_opening) {
+      const double law = strength * (spent_opening - opening) / (spent_opening - peak_opening);
+      r.worst_softening_error = std::max(r.worst_softening_error, std::abs(f - law));
+    }
+  }
+  for (int k = 0; k < 5; ++k) e.step();  // the break takes effect and the joint's contacts open
+  r.dissipated = e.ledger().total.joint_breaks;
+  r.largest_balance_error = e.ledger().largest_balance_error;
+  return r;
+}
+
+}  // namespace
+
+// Softening (JointSet::fracture_energy): pulled apart slowly, the joint carries σt·l at the
+// opening δ0 = σt·l/(2·kn), then a force falling linearly to zero at δc = 2·G_f/σt, and breaks
+// there having dissipated G_f·l, whatever its springs held at the peak (½·σt·l·δ0, a tenth of
+// it here).
+BOOST_AUTO_TEST_CASE(a_softening_joint_dissipates_its_fracture_energy) {
+  const double h = 0.01, sigma_t = 1e6, kn = 1e10, speed = 0.01, dt = 1e-6;
+  scene::Scene sc = joint_scene(dt, kn, sigma_t, 1e7, 30.0);
+  const double ductility = 10.0;                                                // μ = δc/δ0
+  const double peak_opening = sigma_t * h / (2.0 * kn);                         // δ0 = 5e-7 m: 50 steps of pulling
+  sc.joint_sets[0].fracture_energy = 0.5 * sigma_t * ductility * peak_opening;  // G_f = ½·σt·δc
+  const double strength = sigma_t * h, fracture_work = sc.joint_sets[0].fracture_energy * h;
+  const SofteningRun r = pull_until_broken(sc, h, speed, 5000);
+  const SofteningRun half = pull_until_broken(sc, h, 0.5 * speed, 10000);
+  BOOST_REQUIRE(r.break_step > 0 && half.break_step > 0);
+  // One step's increment of the elastic branch, 2·kn·speed·dt = 2% of σt·l: the fracture check
+  // lets a joint carry at most that beyond its strength before it softens, as a brittle joint
+  // before it breaks; the forces after each check lie on the law.
+  const double elastic_increment = 2.0 * kn * speed * dt;
+  // The damage is updated after each step, so within a step the springs keep the last step's
+  // stiffness: the joint takes up to the peak's increment and, on the falling branch, about
+  // (f/δ)·Δδ more than the law while it opens by Δδ = speed·dt. The work beyond G_f·l is then
+  // at most Δδ·σt·l·(1 + ln μ), and it halves with Δδ.
+  const double opening_step = speed * dt;
+  const double lag_bound = opening_step * strength * (1.0 + std::log(ductility));
+  const double excess = r.dissipated - fracture_work, excess_half = half.dissipated - fracture_work;
+  BOOST_TEST_MESSAGE("softening: peak " << r.peak << " N/m against σt·l " << strength << ", largest error on the "
+                                        << "softening branch " << r.worst_softening_error << " N/m, break at step "
+                                        << r.break_step << " at opening " << r.opening_at_break << " m (δc "
+                                        << ductility * peak_opening << "), dissipated " << r.dissipated
+                                        << " J/m against G_f·l " << fracture_work << " (" << excess / fracture_work
+                                        << "; at half the speed " << excess_half / fracture_work << ", bound "
+                                        << lag_bound / fracture_work << "), largest balance error "
+                                        << r.largest_balance_error);
+  BOOST_TEST(r.peak <= strength);
+  BOOST_TEST(r.peak >= strength - elastic_increment);
+  BOOST_TEST(r.worst_softening_error <= 1e-6 * strength);
+  BOOST_TEST(std::abs(r.opening_at_break - ductility * peak_opening) <= 2.0 * opening_step);
+  BOOST_TEST(excess >= 0.0);
+  BOOST_TEST(excess <= lag_bound);
+  BOOST_TEST(excess_half >= 0.0);
+  BOOST_TEST(excess_half <= 0.6 * excess);  // first order in the step's opening
+  BOOST_TEST(r.largest_balance_error <= 1e-4);
+}
+
+// A joint whose springs hold more than G_f·l at its strength (μ ≤ 1) cannot soften: it breaks
+// in the same step as a brittle one, with the same forces on the way.
+BOOST_AUTO_TEST_CASE(a_joint_holding_more_than_its_fracture_energy_breaks_at_its_strength) {
+  const double h = 0.01, sigma_t = 1e6, kn = 1e10, speed = 0.01;
+  scene::Scene brittle = joint_scene(1e-6, kn, sigma_t, 1e7, 30.0);
+  scene::Scene stiff = brittle;
+  stiff.joint_sets[0].fracture_energy = 0.5 * 0.5 * sigma_t * sigma_t * h / (2.0 * kn);  // μ = 0.5
+  const SofteningRun a = pull_until_broken(brittle, h, speed, 5000), b = pull_until_broken(stiff, h, speed, 5000);
+  BOOST_REQUIRE(a.break_step > 0);
+  BOOST_TEST(a.break_step == b.break_step);
+  BOOST_TEST(a.forces == b.forces, boost::test_tools::per_element());
+}

@@ -560,3 +560,34 @@ BOOST_AUTO_TEST_CASE(sliding_is_a_fixed_point_when_the_carried_shear_exceeds_a_f
   BOOST_TEST(judge_contact(c, lin, dv, de, false, tol));
   BOOST_TEST(static_cast<int>(c.trial) == static_cast<int>(ContactState::Locked));
 }
+
+// A softening joint's spring (Contact::damage) carries tension with (1 − D)·kn and compression
+// with kn, so that a crack closes at full stiffness; its energy and the assembly's coefficients
+// follow the side the latest solve found, and crossing sides asks for another solve.
+BOOST_AUTO_TEST_CASE(a_damaged_joint_spring_is_weaker_in_tension_only) {
+  Contact c;
+  c.kn = 3.5e8;
+  c.ks = 0.5 * 1.4e8;
+  c.damage = 0.5;
+  c.state = c.trial = ContactState::Locked;
+  c.d0 = c.d_iter = 1e-6;  // open by 1 µm
+  ContactLinearisation lin;
+  lin.e[kU] = 1.0;  // d = d0 + D_v[u]
+  const Vec6 de = Vec6::Zero();
+  Vec6 dv = Vec6::Zero();
+  BOOST_TEST(!judge_contact(c, lin, dv, de, true));  // bonded: stays locked, still in tension
+  BOOST_TEST(c.fn_iter == -0.5 * c.kn * 1e-6);
+  BOOST_TEST(contact_coefficients(c).kn_eff == 0.5 * c.kn);
+  BOOST_TEST(contact_coefficients(c).fn_rhs == -0.5 * c.kn * c.d0);
+  BOOST_TEST(contact_energy(c).normal == 0.5 * 0.5 * c.kn * 1e-12);
+  dv[kU] = -3e-6;                                   // closes to an overlap of 2 µm
+  BOOST_TEST(judge_contact(c, lin, dv, de, true));  // the side changed: solve again
+  BOOST_TEST(static_cast<int>(c.trial) == static_cast<int>(ContactState::Locked));
+  BOOST_TEST(c.fn_iter == c.kn * 2e-6, boost::test_tools::tolerance(1e-12));  // d = 1e-6 − 3e-6, rounded
+  BOOST_TEST(contact_coefficients(c).kn_eff == c.kn);
+  BOOST_TEST(contact_energy(c).normal == 0.5 * c.kn * 4e-12, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(!judge_contact(c, lin, dv, de, true));  // same side: converged
+  c.damage = 0.0;                                    // an undamaged spring never asks for another solve on crossing
+  dv[kU] = 0.0;
+  BOOST_TEST(!judge_contact(c, lin, dv, de, true));
+}

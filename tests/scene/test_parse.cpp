@@ -240,6 +240,22 @@ BOOST_AUTO_TEST_CASE(a_stress_radius_needs_the_stress_criterion_and_no_sign) {
                  "analysis.fracture_stress_radius", 12, "got -1");
 }
 
+BOOST_AUTO_TEST_CASE(a_fracture_energy_softens_virtual_joints_judged_on_their_springs) {
+  BOOST_TEST(scene::parse_scene(kValid, "ok.toml").joint_sets[0].fracture_energy == 0.0);
+  const std::string softening =
+      replaced(kValid, "tensile_strength = 7.86e6", "tensile_strength = 7.86e6\nfracture_energy = 80");
+  BOOST_TEST(scene::parse_scene(softening, "ok.toml").joint_sets[0].fracture_energy == 80.0);
+  expect_problem(replaced(kValid, "tensile_strength = 7.86e6", "tensile_strength = 7.86e6\nfracture_energy = -1"),
+                 "joints.virtual.fracture_energy", 19, "got -1");
+  expect_problem(
+      replaced(softening, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nfracture_load = \"block_stress\""),
+      "joints.virtual.fracture_energy", 20, "analysis.fracture_load = \"joint_springs\"");
+  expect_problem(replaced(softening, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nintact_nodes = \"tie\""),
+                 "joints.virtual.fracture_energy", 20, "analysis.intact_nodes = \"contact\"");
+  expect_problem(replaced(kValid, "tensile_strength = 10", "tensile_strength = 10\nfracture_energy = 80"),
+                 "contacts.real_joints", 25, "only virtual joints");
+}
+
 BOOST_AUTO_TEST_CASE(mass_damping_is_off_unless_given) {
   BOOST_TEST(scene::parse_scene(kValid, "ok.toml").analysis.mass_damping == 0.0);
   const scene::Scene s = scene::parse_scene(

@@ -55,6 +55,9 @@ struct Joint {
   Index joint_set = 0;                   // index into Scene::joint_sets
   bool broken = false;
   CrackType failure = CrackType::None;  // set by the fracture check when it breaks
+  // Damage D of a softening joint (JointSet::fracture_energy > 0), 0 ≤ D < 1 while intact: its
+  // springs carry tension and shear with (1 − D) of their stiffness (docs/design.md §5).
+  double damage = 0.0;
 };
 
 struct BlockSystem {

@@ -59,6 +59,9 @@ struct Contact {
   double kn = 0.0, ks = 0.0;  // penalty springs, N/m
   double tan_phi = 0.0;
   double cohesion = 0.0, tensile_strength = 0.0;  // Pa, of the joint set (used while cohesive)
+  // Damage of its joint while bonded (Joint::damage; 0 otherwise): the normal spring carries
+  // tension with (1 − damage)·kn (normal_stiffness); ks already holds the damaged shear spring.
+  double damage = 0.0;
   // Per step (geometry at step start): gap and shear (their gradients: ContactLinearisation).
   double d0 = 0.0;  // normal gap, m, positive = apart
   double s0 = 0.0;  // shear displacement from the reference point along the edge, m

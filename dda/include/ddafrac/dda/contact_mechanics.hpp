@@ -46,6 +46,12 @@ void linearise_contact(Contact& c, ContactLinearisation& linear, const BlockSyst
 /// outside the CCW block: d = [(x3-x2)(y2-y1) - (y3-y2)(x2-x1)] / l.
 double normal_gap(double x1, double y1, double x2, double y2, double x3, double y3);
 
+/// The normal spring of contact c at gap d (m), N/m: kn, except that a softening joint's spring
+/// carries tension (d above the rest gap) with (1 − damage)·kn; a crack closes at full stiffness.
+inline double normal_stiffness(const Contact& c, double gap) {
+  return gap > c.rest_gap ? (1.0 - c.damage) * c.kn : c.kn;
+}
+
 /// Spring and load coefficients of a contact in its trial state for the assembly:
 /// K += kn_eff·[e;g][e;g]^T + ks_eff·[es;gs][es;gs]^T,  F += fn_rhs·[e;g] + fs_rhs·[es;gs]
 /// (per state: the table of docs/design.md §4.3).

@@ -59,6 +59,9 @@ struct CrackCounts {
 /// as the force on block_a.
 struct JointForce {
   double normal = 0.0, shear = 0.0;
+  // The normal force its springs would carry undamaged at the same gaps (= normal while
+  // Joint::damage is 0): what drives a softening joint's damage.
+  double normal_undamaged = 0.0;
   int contacts = 0;
   /// An intact joint that carries contacts: the joints the fracture check judges.
   bool judged(const Joint& j) const { return !j.broken && contacts > 0; }
@@ -282,6 +285,10 @@ class Engine {
   /// started from (record_step books their difference from the moved geometry's as residual).
   Energies accept(double dt);
   std::size_t fracture_check();
+  /// After the fracture check raised the damage of softening joints: their contacts' springs,
+  /// forces and stored energies follow at the step's end state. Returns what the springs gave up
+  /// (J/m), the energy the softening dissipated.
+  double follow_joint_damage();
   [[noreturn]] void trouble(const std::string& what) const;
   std::string describe_block(Index b) const;
   std::string describe_contact(Index c) const;

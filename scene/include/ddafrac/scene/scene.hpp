@@ -31,6 +31,11 @@ struct JointSet {
   double tensile_strength = 0.0;  // Pa
   double normal_stiffness = 0.0;  // N/m per unit thickness (penalty kn)
   double shear_stiffness = 0.0;   // N/m per unit thickness (penalty ks)
+  // G_f, J/m² (N/m): the energy a virtual joint of this set dissipates per unit length as it
+  // breaks. 0: brittle (a joint breaks in the step its load first exceeds its strength). Above:
+  // past its strength the joint softens linearly with further opening and breaks once it has
+  // dissipated G_f·l (docs/design.md §5).
+  double fracture_energy = 0.0;
 };
 
 enum class Role { Disc, Platen, Plate };
