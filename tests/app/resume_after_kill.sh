@@ -2,17 +2,18 @@
 # A run killed outright (SIGKILL: no chance to write anything) and resumed from its last
 # checkpoint, on another thread count, finishes with the files of an uninterrupted run, byte for
 # byte (history.csv, cracks.csv, gauges.csv, loading.csv, crack_intervals.csv, run.pvd, every
-# VTU snapshot and joint table); so does a run stopped at --max-steps and resumed. A resume refuses a changed
-# scene, options that would change the run, and a directory without a checkpoint.
+# VTU snapshot and joint table); so does a run stopped at --max-steps and resumed, also with
+# softening joints part-way damaged. A resume refuses a changed scene, options that would change
+# the run, and a directory without a checkpoint.
 # Usage: resume_after_kill.sh DDAFRAC WORK_DIR   (runs the built-in default scene)
 set -u
 exe=$1 work=$2
 rm -rf "$work" && mkdir -p "$work"
 fail() { echo "FAIL: $*"; exit 1; }
-same_files() {  # every file of the uninterrupted run but summary.json (wall times) is identical
-  local n=0
-  for f in $(cd "$work/whole" && find . -type f ! -name summary.json | sort); do
-    cmp -s "$work/whole/$f" "$1/$f" || fail "$1/$f differs from the uninterrupted run's"
+same_files() {  # every file of the uninterrupted run ($2, default whole) but summary.json (wall times) is identical
+  local n=0 whole="$work/${2:-whole}"
+  for f in $(cd "$whole" && find . -type f ! -name summary.json | sort); do
+    cmp -s "$whole/$f" "$1/$f" || fail "$1/$f differs from the uninterrupted run's"
     n=$((n + 1))
   done
   [ -e "$1/checkpoint.bin" ] && fail "$1: a finished run kept its checkpoint"
@@ -44,6 +45,19 @@ same_files "$work/killed"
 "$exe" run --resume "$work/stopped" --no-figures > "$work/resume2.log" 2>&1 || { cat "$work/resume2.log"; fail "resume failed"; }
 grep -q "stopped: max_steps" "$work/resume2.log" || fail "the resume does not say how the run stopped"
 same_files "$work/stopped"
+
+# Softening joints (a fracture energy): stopped while a joint is damaged, resumed to the end on
+# another thread count; the joints' damage travels in the checkpoint.
+softening="--set joints.virtual.fracture_energy=50"
+"$exe" run --out "$work/whole-softening" --no-figures --threads 2 $softening > "$work/whole-softening.log" 2>&1 \
+  || fail "the uninterrupted softening run failed"
+"$exe" run --out "$work/softening" --no-figures --threads 2 --max-steps 2300 --checkpoint-every 0 $softening \
+  > "$work/softening.log" 2>&1 || fail "the softening run to 2300 steps failed"
+grep -A1 '"joints_softening"' "$work/softening/summary.json" | grep -q '"count": [1-9]' \
+  || fail "no joint was softening at the stop (the case this checks)"
+"$exe" run --resume "$work/softening" --no-figures --threads 1 > "$work/resume3.log" 2>&1 \
+  || { cat "$work/resume3.log"; fail "resume failed"; }
+same_files "$work/softening" whole-softening
 
 # Refusals.
 "$exe" run --resume "$work/whole" > "$work/none.log" 2>&1 && fail "resumed a finished run"
