@@ -95,7 +95,8 @@ std::vector<JointForce> Engine::joint_forces() const {
       JointForce& out = f[static_cast<std::size_t>(c.joint)];
       out.normal -= c.normal_force;  // compression positive per contact -> tension positive
       // A softening joint's spring carries tension with (1 − D) of its stiffness.
-      out.normal_undamaged -= c.normal_force < 0.0 ? c.normal_force / (1.0 - c.damage) : c.normal_force;
+      out.normal_undamaged -=
+          c.damage > 0.0 && c.normal_force < 0.0 ? c.normal_force / (1.0 - c.damage) : c.normal_force;
       // The shear spring pushes the vertex by -shear_force along the edge: on block_a directly
       // when it owns the vertex, as the reaction otherwise.
       out.shear += (c.vblock == jt.block_a ? -1.0 : 1.0) * c.shear_force * proj;
@@ -223,15 +224,15 @@ std::size_t Engine::fracture_check() {
 
 double Engine::follow_joint_damage() {
   const auto& js = blocks_.joints;
+  const ContactProperties properties(scene_);
   return detail::chunked_sum<double>(static_cast<std::int64_t>(set_.contacts.size()), [&](std::int64_t k) {
     Contact& c = set_.contacts[k];
     if (!c.bonded(js) || js[static_cast<std::size_t>(c.joint)].damage == c.damage) return 0.0;
     const double before = c.stored_normal + c.stored_shear;
-    c.damage = js[static_cast<std::size_t>(c.joint)].damage;
-    c.ks = (1.0 - c.damage) * scene_.joint_sets[static_cast<std::size_t>(c.joint_set)].shear_stiffness;
-    // A bonded contact is locked: its forces at the end state with the weakened springs.
-    c.normal_force = c.fn_iter = -normal_stiffness(c, c.d_iter) * (c.d_iter - c.rest_gap);
-    c.shear_force = c.ks * c.s_iter;
+    properties.assign(c, blocks_);  // the joint's damage and the weakened shear spring
+    // Committed again at the step's end state with the weakened springs (a bonded contact is locked).
+    c.fn_iter = -normal_stiffness(c, c.d_iter) * (c.d_iter - c.rest_gap);
+    commit_contact(c);
     const ContactEnergy stored = contact_energy(c);
     c.stored_normal = stored.normal;
     c.stored_shear = stored.shear;
