@@ -208,6 +208,7 @@ void run_fem(const FemArguments& args) {
   summary["scene"] = s.name;
   summary["version"] = DDAFRAC_VERSION;
   summary["commit"] = DDAFRAC_COMMIT;
+  summary["arch"] = DDAFRAC_ARCH;
   summary["degree"] = args.degree;
   summary["refinements"] = args.refine;
   summary["cells"] = args.quads ? "quadrilaterals" : "triangles";

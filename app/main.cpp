@@ -51,7 +51,7 @@ int check_command_words(CLI::App& app, int argc, char** argv) {
 int main(int argc, char** argv) {
   CLI::App app{"ddafrac: 2D DDA with virtual joints for rock fracture, verified against deal.II FEM"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", DDAFRAC_VERSION " (commit " DDAFRAC_COMMIT ")");
+  app.set_version_flag("--version", DDAFRAC_VERSION " (commit " DDAFRAC_COMMIT ", " DDAFRAC_ARCH ")");
 
   ddafrac::app::register_mesh_command(app);
   ddafrac::app::register_run_command(app);

@@ -89,9 +89,9 @@ coupling::VerificationReport verify_and_report(const scene::Scene& s, const coup
 
   std::ostringstream md;
   md << "# Verification: " << s.name << "\n\n";
-  md << fmt::format("Scene `{}`{}; ddafrac {} (commit {}), {}; {} DDA thread(s) (results do not depend on it).\n\n",
+  md << fmt::format("Scene `{}`{}; ddafrac {} (commit {}, {}), {}; {} DDA thread(s) (results do not depend on it).\n\n",
                     s.source.string(), s.description.empty() ? "" : " — " + s.description, DDAFRAC_VERSION,
-                    DDAFRAC_COMMIT, utc_now(), options.threads);
+                    DDAFRAC_COMMIT, DDAFRAC_ARCH, utc_now(), options.threads);
   md << fmt::format("Run times: DDA {:.2f} s, FEM {:.2f} s.\n\n", report.dda_wall, report.fem_wall);
   md << report.markdown;
   if (options.figures && !figures)
@@ -113,6 +113,7 @@ coupling::VerificationReport verify_and_report(const scene::Scene& s, const coup
                          {"scene_file", s.source.string()},
                          {"version", DDAFRAC_VERSION},
                          {"commit", DDAFRAC_COMMIT},
+                         {"arch", DDAFRAC_ARCH},
                          {"threads", options.threads},
                          {"fem_degree", options.fem_degree},
                          {"fem_refine", options.fem_refine},

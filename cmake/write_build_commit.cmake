@@ -1,7 +1,8 @@
-# Script mode (cmake -DSOURCE=... -DOUT=... -P write_build_commit.cmake), run at every build:
-# writes OUT, a header defining DDAFRAC_COMMIT, the source tree's commit ("-dirty" when tracked
-# files differ from it; "unknown" outside a git work tree). OUT is rewritten only when that text
-# changes, so a build recompiles the few files that print it only after a commit.
+# Script mode (cmake -DSOURCE=... -DOUT=... -DARCH=... -P write_build_commit.cmake), run at every
+# build: writes OUT, a header defining DDAFRAC_COMMIT, the source tree's commit ("-dirty" when
+# tracked files differ from it; "unknown" outside a git work tree), and DDAFRAC_ARCH = ARCH. OUT
+# is rewritten only when that text changes, so a build recompiles the few files that print it
+# only after a commit.
 find_package(Git QUIET)
 set(commit "unknown")
 if(GIT_FOUND)
@@ -16,7 +17,7 @@ if(GIT_FOUND)
     endif()
   endif()
 endif()
-set(text "#pragma once\n// Written at build time by cmake/write_build_commit.cmake.\n#define DDAFRAC_COMMIT \"${commit}\"\n")
+set(text "#pragma once\n// Written at build time by cmake/write_build_commit.cmake.\n#define DDAFRAC_COMMIT \"${commit}\"\n#define DDAFRAC_ARCH \"${ARCH}\"\n")
 set(old "")
 if(EXISTS "${OUT}")
   file(READ "${OUT}" old)

@@ -159,6 +159,7 @@ nlohmann::json summary_json(const Engine& e, const RunOptions& o, const RunResul
   json j;
   j["ddafrac_version"] = DDAFRAC_VERSION;
   j["ddafrac_commit"] = DDAFRAC_COMMIT;  // which engine wrote these results
+  j["ddafrac_arch"] = DDAFRAC_ARCH;      // and for which instruction set: the last digits depend on it
   j["scene"] = {{"name", sc.name},
                 {"source", sc.source.string()},
                 {"mode", mode_name(an.mode)},
