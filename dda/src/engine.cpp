@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "contact_commit.hpp"
 #include "ddafrac/dda/contact_mechanics.hpp"
 #include "ddafrac/dda/geometry.hpp"
 #include "deterministic_sum.hpp"
@@ -15,6 +16,7 @@ namespace ddafrac::dda {
 
 namespace {
 using detail::chunked_sum;
+using detail::commit_and_store;
 
 /// What committing the contacts of a step adds up: their step energy, the cohesive contacts that
 /// failed, and whether any slides.
@@ -268,10 +270,7 @@ Energies Engine::accept(double dt) {
                                                      : one.residual.contacts_kept;
     source += contact_start_mismatch(c, held);
     one.cohesion_lost = c.cohesion_lost ? 1 : 0;
-    commit_contact(c);
-    const ContactEnergy stored = contact_energy(c);
-    c.stored_normal = stored.normal;
-    c.stored_shear = stored.shear;
+    commit_and_store(c);
     c.was_bonded = c.held(blocks_.joints);
     one.sliding = c.state == ContactState::Sliding;
     return one;

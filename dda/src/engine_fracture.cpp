@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "contact_commit.hpp"
 #include "ddafrac/dda/contact_mechanics.hpp"
 #include "ddafrac/dda/energy_ledger.hpp"
 #include "ddafrac/dda/geometry.hpp"
@@ -232,11 +233,7 @@ double Engine::follow_joint_damage() {
     properties.assign(c, blocks_);  // the joint's damage and the weakened shear spring
     // Committed again at the step's end state with the weakened springs (a bonded contact is locked).
     c.fn_iter = -normal_stiffness(c, c.d_iter) * (c.d_iter - c.rest_gap);
-    commit_contact(c);
-    const ContactEnergy stored = contact_energy(c);
-    c.stored_normal = stored.normal;
-    c.stored_shear = stored.shear;
-    return before - stored.total();
+    return before - detail::commit_and_store(c).total();
   });
 }
 
