@@ -15,14 +15,22 @@
 
 namespace ddafrac::dda {
 
+namespace {
+
+/// The strength of a joint of set `js` and length `length` under the normal force of `f`.
+JointStrength strength_under(const JointForce& f, double length, const scene::JointSet& js) {
+  const double compression = std::max(0.0, -f.normal);
+  return joint_strength(js.tensile_strength, js.cohesion, std::tan(js.friction_angle), length, compression);
+}
+
+}  // namespace
+
 FailureRatios failure_ratios(const JointForce& f, double length, const scene::JointSet& js) {
   auto ratio = [](double load, double strength) {
     if (load <= 0.0) return 0.0;
     return strength > 0.0 ? load / strength : std::numeric_limits<double>::infinity();
   };
-  const double compression = std::max(0.0, -f.normal);
-  const JointStrength strength =
-      joint_strength(js.tensile_strength, js.cohesion, std::tan(js.friction_angle), length, compression);
+  const JointStrength strength = strength_under(f, length, js);
   FailureRatios r;
   r.r1 = ratio(f.normal, strength.tension);
   r.r2 = ratio(std::abs(f.shear), strength.shear);
@@ -153,29 +161,50 @@ namespace {
 /// Damage of a joint that does not soften (its set has no fracture energy, or it is not judged).
 constexpr double kDoesNotSoften = -1.0;
 
-/// Per joint, its damage after this step if its set softens (JointSet::fracture_energy > 0),
-/// judged on the ratios its springs would carry undamaged, which replace its entry of `ratio`;
-/// kDoesNotSoften for every other joint. Empty if no joint set softens. Each joint its own.
-std::vector<double> softened_damage(const BlockSystem& blocks, const scene::Scene& scene,
-                                    const std::vector<JointForce>& f, std::vector<FailureRatios>& ratio) {
+/// A softening joint's damage after this step, and the mode that drives it.
+struct Softened {
+  double damage = kDoesNotSoften;
+  CrackType mode = CrackType::Tensile;
+};
+
+/// The damage of a softening joint with the forces `f` its springs carry now, judged on the
+/// ratios they would carry undamaged (returned in `ratio`). Each mode on its own law where the
+/// set gives shear its own fracture energy (the larger damage wins, no interaction), else the
+/// larger ratio on the tension's law.
+Softened soften(const Joint& jt, const JointForce& f, const scene::JointSet& set, FailureRatios& ratio) {
+  JointForce undamaged = f;
+  undamaged.normal = f.normal_undamaged;
+  undamaged.shear = f.shear / (1.0 - jt.damage);
+  ratio = failure_ratios(undamaged, jt.length, set);
+  const double tensile_ductility =
+      softening_ductility(set.fracture_energy, set.tensile_strength, f.contacts * set.normal_stiffness, jt.length);
+  if (!set.shear_fracture_energy)
+    return {std::max(jt.damage, softening_damage(ratio.largest(), tensile_ductility)), ratio.type()};
+  // μ of shear from its strength under the joint's compression (Pa) and its shear springs.
+  const double shear_strength = strength_under(undamaged, jt.length, set).shear / jt.length;
+  const double shear_ductility =
+      softening_ductility(*set.shear_fracture_energy, shear_strength, f.contacts * set.shear_stiffness, jt.length);
+  const double tensile = softening_damage(ratio.r1, tensile_ductility);
+  const double shear = softening_damage(ratio.r2, shear_ductility);
+  const CrackType mode = tensile == shear ? ratio.type() : (tensile > shear ? CrackType::Tensile : CrackType::Shear);
+  return {std::max({jt.damage, tensile, shear}), mode};
+}
+
+/// Per joint, its damage after this step if its set softens (JointSet::softens), whose ratios
+/// replace its entry of `ratio` (soften); kDoesNotSoften for every other joint. Empty if no joint
+/// set softens. Each joint its own.
+std::vector<Softened> softened_damage(const BlockSystem& blocks, const scene::Scene& scene,
+                                      const std::vector<JointForce>& f, std::vector<FailureRatios>& ratio) {
   const auto& sets = scene.joint_sets;
-  if (std::none_of(sets.begin(), sets.end(), [](const scene::JointSet& s) { return s.fracture_energy > 0.0; }))
-    return {};
+  if (std::none_of(sets.begin(), sets.end(), [](const scene::JointSet& s) { return s.softens(); })) return {};
   const auto& js = blocks.joints;
-  std::vector<double> damage(js.size(), kDoesNotSoften);
+  std::vector<Softened> damage(js.size());
   const auto nj = static_cast<std::int64_t>(js.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t j = 0; j < nj; ++j) {
     const Joint& jt = js[j];
     const scene::JointSet& set = sets[static_cast<std::size_t>(jt.joint_set)];
-    if (!f[j].judged(jt) || set.fracture_energy <= 0.0) continue;
-    JointForce undamaged = f[j];
-    undamaged.normal = f[j].normal_undamaged;
-    undamaged.shear = f[j].shear / (1.0 - jt.damage);
-    ratio[j] = failure_ratios(undamaged, jt.length, set);
-    const double ductility =
-        softening_ductility(set.fracture_energy, set.tensile_strength, f[j].contacts * set.normal_stiffness, jt.length);
-    damage[j] = std::max(jt.damage, softening_damage(ratio[j].largest(), ductility));
+    if (f[j].judged(jt) && set.softens()) damage[j] = soften(jt, f[j], set, ratio[j]);
   }
   return damage;
 }
@@ -188,20 +217,20 @@ std::size_t Engine::fracture_check() {
   // Judged against the state of the step; nothing is changed until all are judged.
   const std::vector<JointForce> forces = joint_forces();
   std::vector<FailureRatios> ratio = joint_ratios(fracture_loads(forces));
-  const std::vector<double> damage = softened_damage(blocks_, scene_, forces, ratio);
+  const std::vector<Softened> damage = softened_damage(blocks_, scene_, forces, ratio);
   std::size_t n = 0;
   bool softened = false;
   for (std::size_t j = 0; j < js.size(); ++j) {
     Joint& jt = js[j];
-    const bool softens = !damage.empty() && damage[j] != kDoesNotSoften;
-    if (softens && damage[j] < 1.0) {
-      softened = softened || damage[j] > jt.damage;
-      jt.damage = damage[j];
+    const bool softens = !damage.empty() && damage[j].damage != kDoesNotSoften;
+    if (softens && damage[j].damage < 1.0) {
+      softened = softened || damage[j].damage > jt.damage;
+      jt.damage = damage[j].damage;
       continue;
     }
     if (!softens && !ratio[j].broken()) continue;
     jt.broken = true;
-    jt.failure = ratio[j].type();
+    jt.failure = softens ? damage[j].mode : ratio[j].type();
     CrackEvent ev;
     ev.t = time_;
     const meshes::Point mid = blocks_.joint_midpoint(jt);

@@ -177,16 +177,19 @@ std::vector<JointSet> parse_joint_sets(TableReader t, const Analysis& analysis) 
     set.fracture_energy =
         j.number("fracture_energy", NumberRule::non_negative("J/m^2, 0 for brittle joints"), Need::Optional)
             .value_or(0.0);
+    set.shear_fracture_energy = j.number(
+        "shear_fracture_energy", NumberRule::non_negative("J/m^2, 0 for joints brittle in shear"), Need::Optional);
     // Softening weakens a joint's own springs: it needs them to be what the criterion judges and
     // to carry the tension across the joint alone.
-    if (set.fracture_energy > 0.0 && analysis.fracture_load != FractureLoad::JointSprings)
-      j.problem("fracture_energy", fmt::format("softens the joint's springs, which the criterion judges only with "
-                                               "analysis.fracture_load = \"{}\"",
-                                               to_string(FractureLoad::JointSprings)));
-    if (set.fracture_energy > 0.0 && analysis.intact_nodes != IntactNodes::Contact)
-      j.problem("fracture_energy", fmt::format("softens the joint's springs, but ties would still hold the blocks "
-                                               "together: it needs analysis.intact_nodes = \"{}\"",
-                                               to_string(IntactNodes::Contact)));
+    const char* softening_key = set.fracture_energy > 0.0 ? "fracture_energy" : "shear_fracture_energy";
+    if (set.softens() && analysis.fracture_load != FractureLoad::JointSprings)
+      j.problem(softening_key, fmt::format("softens the joint's springs, which the criterion judges only with "
+                                           "analysis.fracture_load = \"{}\"",
+                                           to_string(FractureLoad::JointSprings)));
+    if (set.softens() && analysis.intact_nodes != IntactNodes::Contact)
+      j.problem(softening_key, fmt::format("softens the joint's springs, but ties would still hold the blocks "
+                                           "together: it needs analysis.intact_nodes = \"{}\"",
+                                           to_string(IntactNodes::Contact)));
     j.reject_unknown_keys();
     out.push_back(set);
   }
@@ -416,8 +419,9 @@ Scene parse_document(const toml::table& document, const std::filesystem::path& f
   TableReader contacts = top.table("contacts", Need::Required);
   scene.real_joints =
       contacts.reference("real_joints", names_of(scene.joint_sets), "joint sets", Need::Required).value_or(0);
-  if (!scene.joint_sets.empty() && scene.joint_sets[scene.real_joints].fracture_energy > 0.0)
-    contacts.problem("real_joints", fmt::format("joint set \"{}\" has a fracture_energy, which only virtual joints "
+  if (!scene.joint_sets.empty() && scene.joint_sets[scene.real_joints].softens())
+    contacts.problem("real_joints", fmt::format("joint set \"{}\" has a fracture energy (fracture_energy or "
+                                                "shear_fracture_energy), which only virtual joints "
                                                 "use (real joints keep a brittle cohesion)",
                                                 scene.joint_sets[scene.real_joints].name));
   contacts.reject_unknown_keys();

@@ -592,58 +592,77 @@ BOOST_AUTO_TEST_CASE(the_ledger_closes_when_a_broken_joints_corners_swap_vertex_
 
 namespace {
 
-/// Mean opening of the joint of two_squares (m): the right block's copies of the joint's two nodes
-/// minus the left block's, along x.
-double opening_of_two_squares(const BlockSystem& b) {
+/// Which way a test drives the joint of two_squares: pulled apart (along x, mode I) or slid along
+/// it (along y, mode II).
+enum class Drive { Pull, Slide };
+
+/// Mean displacement of the right block's copies of the joint's two nodes from the left block's,
+/// along x (the opening) or along y (the slip) (m).
+double separation_of_two_squares(const BlockSystem& b, Drive drive) {
+  const std::vector<double>& coordinate = drive == Drive::Pull ? b.vx : b.vy;
   double sum = 0.0;
   int copies = 0;
   for (std::size_t v = 0; v < b.vx.size(); ++v) {
     const meshes::Index node = b.vertex_node[v];
     if (node != 1 && node != 4) continue;  // the nodes at x = h
     const bool right = static_cast<Index>(v) >= b.begin(1);
-    sum += right ? b.vx[v] : -b.vx[v];
+    sum += right ? coordinate[v] : -coordinate[v];
     ++copies;
   }
   BOOST_REQUIRE_EQUAL(copies, 4);
   return sum / 2.0;
 }
 
-/// What a pulled joint of two_squares did until it broke (at most max_steps steps).
+/// The softening law a driven joint of two_squares follows: its strength (N/m), the separation at
+/// the peak δ0 (two springs of the drive's stiffness) and the one at which the force is spent,
+/// δc = 2·G/s, from the set's fracture energy of that mode (m).
+struct SofteningLaw {
+  double strength = 0.0, peak = 0.0, spent = 0.0;
+  double force(double separation) const { return strength * (spent - separation) / (spent - peak); }
+};
+SofteningLaw law_of(const scene::JointSet& js, double h, Drive drive) {
+  const bool pull = drive == Drive::Pull;
+  const double stress = pull ? js.tensile_strength : js.cohesion;  // Pa; sliding under no normal load
+  const double energy = pull ? js.fracture_energy : js.shear_fracture_energy.value_or(js.fracture_energy);
+  const double stiffness = 2.0 * (pull ? js.normal_stiffness : js.shear_stiffness);
+  return {stress * h, stress * h / stiffness, 2.0 * energy / stress};
+}
+
+/// What a driven joint of two_squares did until it broke (at most max_steps steps).
 struct SofteningRun {
   int break_step = -1;
-  double peak = 0.0;                   // largest normal force, N/m
+  double peak = 0.0;                   // largest force of the drive's mode, N/m
   double worst_softening_error = 0.0;  // largest |f − f_law(δ)| on the softening branch, N/m
-  double opening_at_break = 0.0;       // m
+  double separation_at_break = 0.0;    // m
+  CrackType failure = CrackType::None;
   double dissipated = 0.0;             // the ledger's joint breaks after the break took effect, J/m
   double largest_balance_error = 0.0;
-  std::vector<double> forces;  // normal force per step, N/m
+  std::vector<double> forces;  // force of the drive's mode per step, N/m
 };
 
-SofteningRun pull_until_broken(const scene::Scene& sc, double h, double speed, int max_steps) {
+SofteningRun drive_until_broken(const scene::Scene& sc, double h, Drive drive, double speed, int max_steps) {
   EngineOptions opt;
   hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
-  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, speed, 0.0);
+  const bool pull = drive == Drive::Pull;
+  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, pull ? speed : 0.0, pull ? 0.0 : speed);
   Engine e(sc, two_squares(h), opt);
-  const scene::JointSet& js = sc.joint_sets[0];
-  const double strength = js.tensile_strength * h;                              // σt·l, N/m
-  const double peak_opening = strength / (2.0 * js.normal_stiffness);           // δ0: two springs
-  const double spent_opening = 2.0 * js.fracture_energy / js.tensile_strength;  // δc
+  const SofteningLaw law = law_of(sc.joint_sets[0], h, drive);
   SofteningRun r;
   for (int k = 1; k <= max_steps; ++k) {
     const StepReport rep = e.step();
-    const double f = e.joint_forces().at(0).normal;
-    const double opening = opening_of_two_squares(e.blocks());
+    const JointForce jf = e.joint_forces().at(0);
+    const double f = pull ? jf.normal : std::abs(jf.shear);
+    const double separation = std::abs(separation_of_two_squares(e.blocks(), drive));
     if (rep.new_cracks > 0) {
       r.break_step = k;
-      r.opening_at_break = opening;
+      r.separation_at_break = separation;
+      r.failure = e.blocks().joints[0].failure;
       break;
     }
     r.forces.push_back(f);
     r.peak = std::max(r.peak, f);
-    if (e.blocks().joints[0].damage > 0.0 && opening < spent_opening) {
-      const double law = strength * (spent_opening - opening) / (spent_opening - peak_opening);
-      r.worst_softening_error = std::max(r.worst_softening_error, std::abs(f - law));
-    }
+    if (e.blocks().joints[0].damage > 0.0 && separation < law.spent)
+      r.worst_softening_error = std::max(r.worst_softening_error, std::abs(f - law.force(separation)));
   }
   for (int k = 0; k < 5; ++k) e.step();  // the break takes effect and the joint's contacts open
   r.dissipated = e.ledger().total.joint_breaks;
@@ -651,50 +670,84 @@ SofteningRun pull_until_broken(const scene::Scene& sc, double h, double speed, i
   return r;
 }
 
-}  // namespace
+SofteningRun pull_until_broken(const scene::Scene& sc, double h, double speed, int max_steps) {
+  return drive_until_broken(sc, h, Drive::Pull, speed, max_steps);
+}
 
-// Softening (JointSet::fracture_energy): pulled apart slowly, the joint carries σt·l at the
-// opening δ0 = σt·l/(2·kn), then a force falling linearly to zero at δc = 2·G_f/σt, and breaks
-// there having dissipated G_f·l, whatever its springs held at the peak (½·σt·l·δ0, a tenth of
-// it here).
-BOOST_AUTO_TEST_CASE(a_softening_joint_dissipates_its_fracture_energy) {
-  const double h = 0.01, sigma_t = 1e6, kn = 1e10, speed = 0.01, dt = 1e-6;
-  scene::Scene sc = joint_scene(dt, kn, sigma_t, 1e7, 30.0);
-  const double ductility = 10.0;                                                // μ = δc/δ0
-  const double peak_opening = sigma_t * h / (2.0 * kn);                         // δ0 = 5e-7 m: 50 steps of pulling
-  sc.joint_sets[0].fracture_energy = 0.5 * sigma_t * ductility * peak_opening;  // G_f = ½·σt·δc
-  const double strength = sigma_t * h, fracture_work = sc.joint_sets[0].fracture_energy * h;
-  const SofteningRun r = pull_until_broken(sc, h, speed, 5000);
-  const SofteningRun half = pull_until_broken(sc, h, 0.5 * speed, 10000);
+/// A joint of two_squares driven at `speed` (and again at half of it) until it broke, each step
+/// `dt`, checked against its softening law (law_of). One step's increment of the elastic branch,
+/// 2·k·speed·dt (k the drive's spring): the fracture check lets a joint carry at most that beyond
+/// its strength before it softens, as a brittle joint before it breaks; the forces after each
+/// check lie on the law. The damage is updated after each step, so within a step the springs keep
+/// the last step's stiffness: the joint takes up to the peak's increment and, on the falling
+/// branch, about (f/δ)·Δδ more than the law while it separates by Δδ = speed·dt. The work beyond
+/// G·l is then at most Δδ·s·l·(1 + ln μ), and it halves with Δδ. Returns the run at `speed`.
+SofteningRun expect_on_its_softening_law(const scene::Scene& sc, double h, Drive drive, double speed, double dt) {
+  const SofteningRun r = drive_until_broken(sc, h, drive, speed, 10000);
+  const SofteningRun half = drive_until_broken(sc, h, drive, 0.5 * speed, 20000);
   BOOST_REQUIRE(r.break_step > 0 && half.break_step > 0);
-  // One step's increment of the elastic branch, 2·kn·speed·dt = 2% of σt·l: the fracture check
-  // lets a joint carry at most that beyond its strength before it softens, as a brittle joint
-  // before it breaks; the forces after each check lie on the law.
-  const double elastic_increment = 2.0 * kn * speed * dt;
-  // The damage is updated after each step, so within a step the springs keep the last step's
-  // stiffness: the joint takes up to the peak's increment and, on the falling branch, about
-  // (f/δ)·Δδ more than the law while it opens by Δδ = speed·dt. The work beyond G_f·l is then
-  // at most Δδ·σt·l·(1 + ln μ), and it halves with Δδ.
-  const double opening_step = speed * dt;
-  const double lag_bound = opening_step * strength * (1.0 + std::log(ductility));
+  const scene::JointSet& js = sc.joint_sets[0];
+  const SofteningLaw law = law_of(js, h, drive);
+  const double spring = drive == Drive::Pull ? js.normal_stiffness : js.shear_stiffness;
+  const double elastic_increment = 2.0 * spring * speed * dt, separation_step = speed * dt;
+  const double fracture_work = 0.5 * law.strength * law.spent;  // G·l
+  const double lag_bound = separation_step * law.strength * (1.0 + std::log(law.spent / law.peak));
   const double excess = r.dissipated - fracture_work, excess_half = half.dissipated - fracture_work;
-  BOOST_TEST_MESSAGE("softening: peak " << r.peak << " N/m against σt·l " << strength << ", largest error on the "
-                                        << "softening branch " << r.worst_softening_error << " N/m, break at step "
-                                        << r.break_step << " at opening " << r.opening_at_break << " m (δc "
-                                        << ductility * peak_opening << "), dissipated " << r.dissipated
-                                        << " J/m against G_f·l " << fracture_work << " (" << excess / fracture_work
-                                        << "; at half the speed " << excess_half / fracture_work << ", bound "
-                                        << lag_bound / fracture_work << "), largest balance error "
-                                        << r.largest_balance_error);
-  BOOST_TEST(r.peak <= strength);
-  BOOST_TEST(r.peak >= strength - elastic_increment);
-  BOOST_TEST(r.worst_softening_error <= 1e-6 * strength);
-  BOOST_TEST(std::abs(r.opening_at_break - ductility * peak_opening) <= 2.0 * opening_step);
+  BOOST_TEST_MESSAGE((drive == Drive::Pull ? "pulled" : "slid")
+                     << ": peak " << r.peak << " N/m against the strength " << law.strength << ", largest error on "
+                     << "the softening branch " << r.worst_softening_error << " N/m, break at step " << r.break_step
+                     << " at separation " << r.separation_at_break << " m (δc " << law.spent << "), dissipated "
+                     << r.dissipated << " J/m against G·l " << fracture_work << " (" << excess / fracture_work
+                     << "; at half the speed " << excess_half / fracture_work << ", bound " << lag_bound / fracture_work
+                     << "), largest balance error " << r.largest_balance_error);
+  BOOST_TEST(r.peak <= law.strength);
+  BOOST_TEST(r.peak >= law.strength - elastic_increment);
+  BOOST_TEST(r.worst_softening_error <= 1e-6 * law.strength);
+  BOOST_TEST(std::abs(r.separation_at_break - law.spent) <= 2.0 * separation_step);
   BOOST_TEST(excess >= 0.0);
   BOOST_TEST(excess <= lag_bound);
   BOOST_TEST(excess_half >= 0.0);
-  BOOST_TEST(excess_half <= 0.6 * excess);  // first order in the step's opening
+  BOOST_TEST(excess_half <= 0.6 * excess);  // first order in the step's separation
   BOOST_TEST(r.largest_balance_error <= 1e-4);
+  return r;
+}
+
+}  // namespace
+
+// Softening (JointSet::fracture_energy): pulled apart slowly, the joint carries σt·l at the
+// opening δ0 = σt·l/(2·kn) (50 steps of pulling here), then a force falling linearly to zero at
+// δc = 2·G_f/σt, and breaks there having dissipated G_f·l, whatever its springs held at the peak
+// (½·σt·l·δ0, a tenth of it here).
+BOOST_AUTO_TEST_CASE(a_softening_joint_dissipates_its_fracture_energy) {
+  const double h = 0.01, sigma_t = 1e6, kn = 1e10, dt = 1e-6;
+  scene::Scene sc = joint_scene(dt, kn, sigma_t, 1e7, 30.0);
+  const double ductility = 10.0;                                                // μ = δc/δ0
+  const double peak_opening = sigma_t * h / (2.0 * kn);                         // δ0
+  sc.joint_sets[0].fracture_energy = 0.5 * sigma_t * ductility * peak_opening;  // G_f = ½·σt·δc
+  const SofteningRun r = expect_on_its_softening_law(sc, h, Drive::Pull, 0.01, dt);
+  BOOST_TEST(static_cast<int>(r.failure) == static_cast<int>(CrackType::Tensile));
+}
+
+// Mode II on its own law (JointSet::shear_fracture_energy): slid along the joint with no normal
+// load, the joint carries c·l at the slip δ0 = c·l/(2·ks), then a shear force falling linearly to
+// zero at δc = 2·G_IIf/c, and breaks there in shear having dissipated G_IIf·l; tension stays
+// brittle (fracture_energy 0).
+BOOST_AUTO_TEST_CASE(a_joint_softening_in_shear_dissipates_its_shear_fracture_energy) {
+  const double h = 0.01, cohesion = 1e6, kn = 1e10, dt = 1e-6;
+  // No friction: the strength is c·l whatever normal force the sliding block's small turn makes.
+  scene::Scene sc = joint_scene(dt, kn, 1e7, cohesion, 0.0);
+  scene::JointSet& js = sc.joint_sets[0];
+  const double ductility = 10.0;                                       // μ = δc/δ0
+  const double peak_slip = cohesion * h / (2.0 * js.shear_stiffness);  // δ0
+  js.shear_fracture_energy = 0.5 * cohesion * ductility * peak_slip;   // G_IIf = ½·c·δc
+  const SofteningRun r = expect_on_its_softening_law(sc, h, Drive::Slide, 0.01, dt);
+  BOOST_TEST(static_cast<int>(r.failure) == static_cast<int>(CrackType::Shear));
+  // Without a shear energy of its own the same joint is brittle in shear here (its G_f is 0): it
+  // breaks at its strength, at the slip δ0 instead of δc.
+  js.shear_fracture_energy.reset();
+  const SofteningRun brittle = drive_until_broken(sc, h, Drive::Slide, 0.01, 5000);
+  BOOST_REQUIRE(brittle.break_step > 0);
+  BOOST_TEST(std::abs(brittle.separation_at_break - peak_slip) <= 2.0 * 0.01 * dt);
 }
 
 // A joint whose springs hold more than G_f·l at its strength (μ ≤ 1) cannot soften: it breaks

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "ddafrac/dda/run.hpp"
@@ -39,6 +40,7 @@ struct Variant {
   scene::FractureLoad load = scene::FractureLoad::JointSprings;
   double stress_radius = 0.0;    // m, analysis.fracture_stress_radius
   double fracture_energy = 0.0;  // J/m², of the disc's virtual joints
+  std::optional<double> shear_fracture_energy = std::nullopt;  // J/m², of the disc's virtual joints (mode II's own)
   double strength_factor = 1.0;  // on the tensile strength and cohesion of the disc's virtual joints
 };
 
@@ -58,6 +60,7 @@ ThreadRun run_with_threads(int threads, const fs::path& root, const Variant& v =
     if (b.virtual_joints) {
       scene::JointSet& js = s.joint_sets[*b.virtual_joints];
       js.fracture_energy = v.fracture_energy;
+      js.shear_fracture_energy = v.shear_fracture_energy;
       js.tensile_strength *= v.strength_factor;
       js.cohesion *= v.strength_factor;
     }
@@ -118,6 +121,22 @@ BOOST_AUTO_TEST_CASE(one_and_two_threads_are_bit_identical_with_softening_joints
   v.strength_factor = kThreadTestStrengthFactor;
   const ThreadRun a = run_with_threads(1, root, v), b = run_with_threads(2, root, v);
   BOOST_TEST(a.softened > 0);  // the runs exercise the softening
+  BOOST_TEST(a.softened == b.softened);
+  expect_identical(a.dir, b.dir);
+  fs::remove_all(root);
+}
+
+// The same with shear softening on its own law (JointSet::shear_fracture_energy, here twice the
+// tension's energy): each mode's damage is judged per joint.
+BOOST_AUTO_TEST_CASE(one_and_two_threads_are_bit_identical_with_shear_softening_of_its_own) {
+  const fs::path root = fs::temp_directory_path() / ("ddafrac-dda-threads-mode2-" + std::to_string(::getpid()));
+  Variant v;
+  v.tag = "-mode2";
+  v.fracture_energy = kThreadTestFractureEnergy;
+  v.shear_fracture_energy = 2.0 * kThreadTestFractureEnergy;
+  v.strength_factor = kThreadTestStrengthFactor;
+  const ThreadRun a = run_with_threads(1, root, v), b = run_with_threads(2, root, v);
+  BOOST_TEST(a.softened > 0);
   BOOST_TEST(a.softened == b.softened);
   expect_identical(a.dir, b.dir);
   fs::remove_all(root);

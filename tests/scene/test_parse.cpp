@@ -256,6 +256,29 @@ BOOST_AUTO_TEST_CASE(a_fracture_energy_softens_virtual_joints_judged_on_their_sp
                  "contacts.real_joints", 25, "only virtual joints");
 }
 
+// A fracture energy of its own for shear (mode II): absent, shear softens with the tension's law;
+// given alone, the joints soften in shear and stay brittle in tension, with the same conditions.
+BOOST_AUTO_TEST_CASE(a_shear_fracture_energy_softens_shear_on_its_own_law) {
+  const scene::JointSet brittle = scene::parse_scene(kValid, "ok.toml").joint_sets[0];
+  BOOST_TEST(!brittle.shear_fracture_energy.has_value());
+  BOOST_TEST(!brittle.softens());
+  const std::string shear =
+      replaced(kValid, "tensile_strength = 7.86e6", "tensile_strength = 7.86e6\nshear_fracture_energy = 800");
+  const scene::JointSet js = scene::parse_scene(shear, "ok.toml").joint_sets[0];
+  BOOST_TEST(js.shear_fracture_energy.value_or(-1.0) == 800.0);
+  BOOST_TEST(js.fracture_energy == 0.0);
+  BOOST_TEST(js.softens());
+  const std::string brittle_shear =
+      replaced(kValid, "tensile_strength = 7.86e6", "tensile_strength = 7.86e6\nshear_fracture_energy = 0");
+  BOOST_TEST(scene::parse_scene(brittle_shear, "ok.toml").joint_sets[0].shear_fracture_energy.value_or(-1.0) == 0.0);
+  expect_problem(replaced(kValid, "tensile_strength = 7.86e6", "tensile_strength = 7.86e6\nshear_fracture_energy = -5"),
+                 "joints.virtual.shear_fracture_energy", 19, "got -5");
+  expect_problem(replaced(shear, "gravity = [0.0, -9.81]", "gravity = [0.0, -9.81]\nintact_nodes = \"tie\""),
+                 "joints.virtual.shear_fracture_energy", 20, "analysis.intact_nodes = \"contact\"");
+  expect_problem(replaced(kValid, "tensile_strength = 10", "tensile_strength = 10\nshear_fracture_energy = 80"),
+                 "contacts.real_joints", 25, "only virtual joints");
+}
+
 BOOST_AUTO_TEST_CASE(mass_damping_is_off_unless_given) {
   BOOST_TEST(scene::parse_scene(kValid, "ok.toml").analysis.mass_damping == 0.0);
   const scene::Scene s = scene::parse_scene(

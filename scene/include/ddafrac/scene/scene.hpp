@@ -36,6 +36,13 @@ struct JointSet {
   // past its strength the joint softens linearly with further opening and breaks once it has
   // dissipated G_f·l (docs/design.md §5).
   double fracture_energy = 0.0;
+  // G_IIf, J/m² (N/m): the energy a virtual joint dissipates per unit length as it breaks in
+  // shear, on a softening law of its own (docs/design.md §5). Absent: shear softens with the
+  // tension's ductility μ (one fracture energy for both modes). 0: brittle in shear.
+  std::optional<double> shear_fracture_energy = std::nullopt;
+
+  /// A joint of this set softens past its strength in one mode or both.
+  bool softens() const { return fracture_energy > 0.0 || shear_fracture_energy.value_or(0.0) > 0.0; }
 };
 
 enum class Role { Disc, Platen, Plate };
