@@ -18,6 +18,8 @@ summary.json, scene.resolved.toml, history.csv, gauges.csv and loading.csv, and 
     figures/rate.png            the flattened disc's force-displacement curves per platen speed,
                                 and the peak force against speed
     figures/penalty_theta.png   the θ series' crack counts and lengths at the scene's kn and at 10·E
+    figures/penalty_theta_patterns_knXE.png
+                                the θ series' crack patterns over σ1 at the end, per kn/E = X
     figures/damping.png         the flattened disc's force-displacement curves per mass damping η,
                                 and the peak force against η beside the static run's
 
@@ -309,9 +311,10 @@ def draw_measures(runs, x, xlabel, logx, title, path, save):
     save(figure, path)
 
 
-def draw_end_patterns(h, runs, title, path, save):
+def draw_end_patterns(h, runs, title, path, save, label=lambda run: f"{run['blocks']} blocks"):
     """A panel per run, in the order given: its crack pattern over σ1 at its last snapshot, one
-    colour scale for all, so that what the mesh changes in where cracks run shows at a glance."""
+    colour scale for all, so that what the mesh (or another parameter, named by `label`) changes in
+    where cracks run shows at a glance."""
     panels = [(run, snapshots[-1]) for run, snapshots in ((r, h.read_snapshots(r["dir"])) for r in runs) if snapshots]
     if not panels:
         return
@@ -320,7 +323,7 @@ def draw_end_patterns(h, runs, title, path, save):
     for a, (run, (time, snapshot)) in zip(axes[0], panels):
         a.set_xticks([])
         a.set_yticks([])
-        a.set_title(f"{run['blocks']} blocks, {h.time_label(time)}", fontsize="small")
+        a.set_title(f"{label(run)}, {h.time_label(time)}", fontsize="small")
         collections.append(h.draw_pattern(a, snapshot))
     figure.suptitle(title)
     h.share_sigma1_scale(figure, axes, collections)
@@ -610,14 +613,18 @@ def node_model_section(h, runs, figures, save):
     return md
 
 
-def theta_section(runs, figures, save):
-    """The θ series at each kn the family ran (the scene's and 10·E), one table and one line each."""
+def theta_section(h, runs, figures, save):
+    """The θ series at each kn the family ran (the scene's and 10·E, or one kn where --set gave
+    both the same), one table, one line and one row of crack patterns each."""
     angle = lambda r: r["scene"].get("geometry", {}).get("joint_angle")  # noqa: E731
     stiffness = lambda r: r["kn"] / r["young"]  # noqa: E731
     by_stiffness = {}
+    seen = set()  # a case whose scene repeats another's ran once, in the other's directory
     for r in sorted(runs, key=lambda r: (stiffness(r), angle(r) or 0.0)):
-        by_stiffness.setdefault(stiffness(r), []).append(r)
-    md = "## The θ series at the scene's kn and at kn = 10·E\n\n"
+        if r["dir"] not in seen:
+            seen.add(r["dir"])
+            by_stiffness.setdefault(stiffness(r), []).append(r)
+    md = "## The θ series against the joints' stiffness\n\n"
     figure, (counts, lengths) = plt.subplots(1, 2, figsize=(13, 4.5))
     for ratio, series in by_stiffness.items():
         label = f"kn = {ratio:.3g}·E"
@@ -627,6 +634,9 @@ def theta_section(runs, figures, save):
         counts.plot(angles, [r["cracks"].get("shear") for r in series], "s--", color=line.get_color(),
                     label=f"{label}, shear")
         lengths.plot(angles, [scaled(r["length"], MILLIMETRES) for r in series], "o-", label=label)
+        draw_end_patterns(h, series, f"the θ series at {label}: cracks at the end",
+                          os.path.join(figures, f"penalty_theta_patterns_kn{ratio:.3g}E.png"), save,
+                          label=lambda r: f"θ = {angle(r):g}°")
     counts.set_ylabel("cracks at the end")
     lengths.set_ylabel("crack length at the end (mm)")
     for axes in (counts, lengths):
@@ -670,7 +680,7 @@ def draw_study(args, h, save):
     if "rate" in runs:
         md += rate_section(h, runs["rate"], figures, save)
     if "penalty-theta" in runs:
-        md += theta_section(runs["penalty-theta"], figures, save)
+        md += theta_section(h, runs["penalty-theta"], figures, save)
     if "damping" in runs:
         md += damping_section(h, runs["damping"], figures, save)
     if "node-model" in runs:

@@ -9,7 +9,7 @@
 #   - every case got kn = 10·E and a dt_max shorter than the scene's that resolves its contact
 #     period (its run did not warn), as the family promises;
 #   - analysis.md has the θ section with a table per kn, each with one row per θ, and
-#     figures/penalty_theta.png;
+#     figures/penalty_theta.png and a row of crack patterns per kn;
 #   - --status and --report without --family and --blocks are about the same cases, and a
 #     study.json whose record of them was edited is refused, naming the key;
 #   - one case gives the same files on 2 threads.
@@ -54,7 +54,7 @@ PY
   check_contact_period_resolved "$c" "$study/$c" "$scene_dt"
 done
 
-grep -q "^## The θ series at the scene's kn and at kn = 10·E" "$study/analysis.md" || fail "analysis.md has no θ section"
+grep -q "^## The θ series against the joints' stiffness" "$study/analysis.md" || fail "analysis.md has no θ section"
 # The rows of the kn = 10·E table (stiff) or of the other one (scene) as "case:θ ".
 theta_rows() {
   sed -n "/^## The θ series/,/^## [^T]/p" "$study/analysis.md" |
@@ -69,6 +69,10 @@ scene_rows=$(theta_rows scene)
   fail "the θ section's table at the scenes' kn has rows '$scene_rows', not case01-700 at 0 and case07-700 at 90"
 echo "analysis.md: θ rows at 10·E: $stiff_rows; at the scenes' kn: $scene_rows"
 [ -s "$study/figures/penalty_theta.png" ] || fail "no figures/penalty_theta.png"
+# A row of crack patterns per kn: the scenes' (0.35 GPa / 10.53 GPa) and 10·E.
+for kn in 0.0332 10; do
+  [ -s "$study/figures/penalty_theta_patterns_kn${kn}E.png" ] || fail "no figures/penalty_theta_patterns_kn${kn}E.png"
+done
 
 # A study.json whose recorded --blocks was edited into something else is refused, naming the key.
 damaged="$work/damaged"
