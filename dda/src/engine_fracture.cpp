@@ -23,18 +23,22 @@ JointStrength strength_under(const JointForce& f, double length, const scene::Jo
   return joint_strength(js.tensile_strength, js.cohesion, std::tan(js.friction_angle), length, compression);
 }
 
-}  // namespace
-
-FailureRatios failure_ratios(const JointForce& f, double length, const scene::JointSet& js) {
-  auto ratio = [](double load, double strength) {
+/// The failure ratios of the forces `f` against a joint's `strength` (failure_ratios).
+FailureRatios ratios_against(const JointForce& f, const JointStrength& strength) {
+  auto ratio = [](double load, double limit) {
     if (load <= 0.0) return 0.0;
-    return strength > 0.0 ? load / strength : std::numeric_limits<double>::infinity();
+    return limit > 0.0 ? load / limit : std::numeric_limits<double>::infinity();
   };
-  const JointStrength strength = strength_under(f, length, js);
   FailureRatios r;
   r.r1 = ratio(f.normal, strength.tension);
   r.r2 = ratio(std::abs(f.shear), strength.shear);
   return r;
+}
+
+}  // namespace
+
+FailureRatios failure_ratios(const JointForce& f, double length, const scene::JointSet& js) {
+  return ratios_against(f, strength_under(f, length, js));
 }
 
 JointForce stress_traction(const BlockSystem& blocks, const Joint& j) {
@@ -175,13 +179,14 @@ Softened soften(const Joint& jt, const JointForce& f, const scene::JointSet& set
   JointForce undamaged = f;
   undamaged.normal = f.normal_undamaged;
   undamaged.shear = f.shear / (1.0 - jt.damage);
-  ratio = failure_ratios(undamaged, jt.length, set);
+  const JointStrength strength = strength_under(undamaged, jt.length, set);
+  ratio = ratios_against(undamaged, strength);
   const double tensile_ductility =
       softening_ductility(set.fracture_energy, set.tensile_strength, f.contacts * set.normal_stiffness, jt.length);
   if (!set.shear_fracture_energy)
     return {std::max(jt.damage, softening_damage(ratio.largest(), tensile_ductility)), ratio.type()};
   // μ of shear from its strength under the joint's compression (Pa) and its shear springs.
-  const double shear_strength = strength_under(undamaged, jt.length, set).shear / jt.length;
+  const double shear_strength = strength.shear / jt.length;
   const double shear_ductility =
       softening_ductility(*set.shear_fracture_energy, shear_strength, f.contacts * set.shear_stiffness, jt.length);
   const double tensile = softening_damage(ratio.r1, tensile_ductility);

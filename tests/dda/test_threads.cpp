@@ -111,33 +111,35 @@ BOOST_AUTO_TEST_CASE(one_and_two_threads_are_bit_identical_with_ties_and_the_str
   fs::remove_all(root);
 }
 
-// The same with softening joints (JointSet::fracture_energy): the damage is judged per joint and
-// what the springs give up summed in a fixed order.
-BOOST_AUTO_TEST_CASE(one_and_two_threads_are_bit_identical_with_softening_joints) {
-  const fs::path root = fs::temp_directory_path() / ("ddafrac-dda-threads-softening-" + std::to_string(::getpid()));
-  Variant v;
-  v.tag = "-softening";
-  v.fracture_energy = kThreadTestFractureEnergy;
-  v.strength_factor = kThreadTestStrengthFactor;
+namespace {
+/// 1 and 2 threads of the softening variant `v` give the same files, with joints softening.
+void expect_softening_identical(const Variant& v, const std::string& dir_name) {
+  const fs::path root = fs::temp_directory_path() / (dir_name + std::to_string(::getpid()));
   const ThreadRun a = run_with_threads(1, root, v), b = run_with_threads(2, root, v);
   BOOST_TEST(a.softened > 0);  // the runs exercise the softening
   BOOST_TEST(a.softened == b.softened);
   expect_identical(a.dir, b.dir);
   fs::remove_all(root);
 }
+}  // namespace
+
+// The same with softening joints (JointSet::fracture_energy): the damage is judged per joint and
+// what the springs give up summed in a fixed order.
+BOOST_AUTO_TEST_CASE(one_and_two_threads_are_bit_identical_with_softening_joints) {
+  Variant v;
+  v.tag = "-softening";
+  v.fracture_energy = kThreadTestFractureEnergy;
+  v.strength_factor = kThreadTestStrengthFactor;
+  expect_softening_identical(v, "ddafrac-dda-threads-softening-");
+}
 
 // The same with shear softening on its own law (JointSet::shear_fracture_energy, here twice the
 // tension's energy): each mode's damage is judged per joint.
 BOOST_AUTO_TEST_CASE(one_and_two_threads_are_bit_identical_with_shear_softening_of_its_own) {
-  const fs::path root = fs::temp_directory_path() / ("ddafrac-dda-threads-mode2-" + std::to_string(::getpid()));
   Variant v;
   v.tag = "-mode2";
   v.fracture_energy = kThreadTestFractureEnergy;
   v.shear_fracture_energy = 2.0 * kThreadTestFractureEnergy;
   v.strength_factor = kThreadTestStrengthFactor;
-  const ThreadRun a = run_with_threads(1, root, v), b = run_with_threads(2, root, v);
-  BOOST_TEST(a.softened > 0);
-  BOOST_TEST(a.softened == b.softened);
-  expect_identical(a.dir, b.dir);
-  fs::remove_all(root);
+  expect_softening_identical(v, "ddafrac-dda-threads-mode2-");
 }
