@@ -345,10 +345,11 @@ void run_run(const RunArguments& given) {
         stderr,
         "warning: {} contact(s) came in deep (deepest {:.3g} m): first detected already deeper than one "
         "step's allowed displacement ({:.3g} m), or their spring took more than {:.2g}% of the energy "
-        "balance at once; their springs released energy no work put in. Known sources: when a virtual joint "
-        "fails in shear, the vertices of its second block are first detected at the joint's compression; a "
-        "corner of two triangles that share only a mesh node passes to a copy of the node that sank within one step "
-        "(see missed_contacts in summary.json, docs/results/study_full_size.md and docs/design.md §4.6)\n",
+        "balance at once; their springs released energy no work put in. Known sources: a vertex of a broken "
+        "joint's second block, which the joint did not hold, found inside the first block at the joint's "
+        "compression while the held vertex keeps a contact of its own; a corner of two triangles that share only "
+        "a mesh node passes to a copy of the node that sank within one step (see missed_contacts in "
+        "summary.json, docs/results/study_full_size.md and docs/design.md §4.6, §4.7)\n",
         st.missed_contacts, st.deepest_missed, engine->allowed_displacement(), 100.0 * dda::kDeepContactEnergyFraction);
   if (st.initial_overlaps > 0)
     fmt::print(stderr,

@@ -746,6 +746,15 @@ void detect_contacts(const BlockSystem& s, const DetectionParams& prm, Detection
 
 namespace {
 
+/// Whether vertex v has a contact in the block pair (low, high) of `list`, sorted by (low block,
+/// high block, vertex) as detect_contacts returns it.
+bool has_contact(const std::vector<Contact>& list, Index v, Index low, Index high) {
+  const auto key = [](const Contact& c) { return std::tuple(c.pair_low(), c.pair_high(), c.vertex); };
+  const auto at = std::lower_bound(list.begin(), list.end(), std::tuple(low, high, v),
+                                   [&](const Contact& c, const auto& k) { return key(c) < k; });
+  return at != list.end() && key(*at) == std::tuple(low, high, v);
+}
+
 /// The previous contact of the same pair at the same corner with the roles of vertex and edge
 /// swapped, or null: the angle rules may pick the other reference line of a vertex-vertex
 /// contact as the blocks move, and a vertex-vertex contact whose vertices drift apart becomes a
@@ -754,27 +763,37 @@ namespace {
 /// the swapped one. Both ends will not do: where two blocks share a whole edge (a broken virtual
 /// joint), each block's vertices are the ends of the other's edge, so the contact at the far
 /// corner would match too and be carried twice, while the one at c's own corner vanished.
+/// The corner of a joint that has just broken swaps between two vertex-edge contacts too: the
+/// joint held its first block's vertex at the end of the other's edge, and a joint that slid before
+/// it broke (softening in shear) leaves the other copy of the node on the first block's edge,
+/// farther from its end than the vertex-vertex capture radius. Under compression that corner stays
+/// loaded; its spring moves from one copy to the other, unless the held vertex kept a contact of
+/// its own (`current`, the list being carried), which then carries it.
 const Contact* swapped_corner(const std::vector<Contact>& previous, const ContactsByVertex& by_vertex,
-                              const Contact& c) {
+                              const std::vector<Contact>& current, const Contact& c, const std::vector<Joint>& joints) {
   // The vertex's projection on the edge (ref_t, fresh from detection) says which end is nearer.
   const Index end = c.ref_t > 0.5 ? c.edge1 : c.edge0;
   const Index k = by_vertex.find(end, c.vblock, c.eblock);
   if (k < 0) return nullptr;
   const Contact& p = previous[static_cast<std::size_t>(k)];
-  return (p.vertex_vertex || c.vertex_vertex) && (c.vertex == p.edge0 || c.vertex == p.edge1) ? &p : nullptr;
+  if (c.vertex != p.edge0 && c.vertex != p.edge1) return nullptr;
+  if (p.vertex_vertex || c.vertex_vertex) return &p;
+  const bool joint_just_broke = p.was_bonded && p.joint >= 0 && joints[static_cast<std::size_t>(p.joint)].broken;
+  return joint_just_broke && !has_contact(current, p.vertex, c.pair_low(), c.pair_high()) ? &p : nullptr;
 }
 
 }  // namespace
 
 CarriedState carry_contact_state(const std::vector<Contact>& previous, const ContactsByVertex& previous_by_vertex,
-                                 Contact& c, const std::vector<Joint>& joints, const BlockSystem& blocks) {
+                                 const std::vector<Contact>& current, Contact& c, const std::vector<Joint>& joints,
+                                 const BlockSystem& blocks) {
   // New contacts touching or overlapping start closed; the copies of a shared mesh node
   // start at exactly zero gap and stay open until they overlap.
   const bool touching = c.shared_node ? c.d0 < 0.0 : c.d0 <= 0.0;
   c.state = touching || c.held(joints) ? ContactState::Locked : ContactState::Open;
   const Index same = previous_by_vertex.find(c.vertex, c.vblock, c.eblock);
   const Contact* p = same >= 0 ? &previous[static_cast<std::size_t>(same)] : nullptr;
-  const bool swapped = !p && (p = swapped_corner(previous, previous_by_vertex, c)) != nullptr;
+  const bool swapped = !p && (p = swapped_corner(previous, previous_by_vertex, current, c, joints)) != nullptr;
   if (!p) return {};
   if (p->tied && !c.tied) return {nullptr, true};
   c.carried = true;

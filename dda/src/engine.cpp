@@ -164,7 +164,8 @@ void Engine::detect() {
     const double tie_end = ties && c.shared_node ? node_copy_on_edge(c, blocks_) : -1.0;
     c.tied = tie_end >= 0.0 && tie_groups.tied(c.vertex, tie_end == 0.0 ? c.edge0 : c.edge1);
     const Index tie_set = c.tied ? tie_groups.joint_set[static_cast<std::size_t>(c.vertex)] : kNodeNotTied;
-    const CarriedState from = carry_contact_state(previous, detection_.previous_by_vertex, c, blocks_.joints, blocks_);
+    const CarriedState from =
+        carry_contact_state(previous, detection_.previous_by_vertex, found, c, blocks_.joints, blocks_);
     const Contact* p = from.previous;
     if (p) {
 #pragma omp atomic write

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -527,6 +528,12 @@ struct SwappingBreak {
   double vx_bottom, vx_top, vy;       // m/s
   CrackType type;
   bool corners_stay_closed;
+  // Shear softening (JointSet::shear_fracture_energy, J/m²): the joint slides by δc before it
+  // breaks, farther than the vertex-vertex capture radius, so that the corner loaded in
+  // compression swaps as two vertex-edge contacts instead (docs/design.md §4.7).
+  std::optional<double> shear_fracture_energy = std::nullopt;
+  int corners_swapped = 2;       // corners whose contact the right square's vertex holds after the break
+  double jump_tolerance = 0.01;  // of the joint's stored energy (the test's comment)
 };
 }  // namespace
 
@@ -543,21 +550,33 @@ struct SwappingBreak {
 // order in the step displacement: the residual moves at the break by 0.03% (shear) and 0.001%
 // (tension) of the joint's stored energy, and the balance error stays below 1e-4. The checks
 // allow 1% and 1e-3, ten times more, and sit well below what the mismatched corners cost.
+// A joint softened in shear slides δc ≈ 50 µm before it breaks (2·G_IIf/τ), and its compressed
+// corner is then the right square's vertex on the left square's edge, a vertex-edge contact
+// like the held one, with vertex and edge swapped. Matched only as vertex-vertex corners, it came
+// in new, and its spring of ½·kn·d² with it: the residual jumped by 97.5% of the joint's energy
+// (balance error 0.63%). Carried, the spring moves to the other copy of the node, δc along the
+// joint, where the squares' relative turn leaves it 1% less overlap: the residual moves by 1.8%
+// of the joint's energy; the check allows 5%.
 BOOST_AUTO_TEST_CASE(the_ledger_closes_when_a_broken_joints_corners_swap_vertex_and_edge) {
   const double h = 0.01, phi_virtual = 30.0, phi_real = 20.0;
   const SwappingBreak cases[] = {
       {"shear under compression", 1e7, 1e6, -0.012, -0.008, 0.02, CrackType::Shear, true},
       {"tension", 1e6, 1e7, 0.012, 0.008, 0.0, CrackType::Tensile, false},
+      {"shear under compression, softened", 1e7, 1e6, -0.0012, -0.0008, 0.02, CrackType::Shear, true, 100.0, 1, 0.05},
   };
   for (const SwappingBreak& k : cases) {
     scene::Scene sc = joint_scene(1e-6, 1e10, k.tensile_strength, k.cohesion, phi_virtual);
     sc.joint_sets[1].friction_angle = phi_real * kPi / 180.0;  // the broken joint keeps friction
+    sc.joint_sets[0].shear_fracture_energy = k.shear_fracture_energy;
+    // A small allowed step, and with it a capture radius (the search distance) of 12.5 µm, well
+    // below the slip at which the softened joint breaks (2·G_IIf/τ ≈ 50 µm).
+    if (k.shear_fracture_energy) sc.analysis.max_displacement_ratio = 5e-4;
     EngineOptions opt;
     hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
     hold(opt.anchors, 1, {{2 * h, 0}}, k.vx_bottom, k.vy);
     hold(opt.anchors, 1, {{2 * h, h}}, k.vx_top, k.vy);
     Engine e(sc, two_squares(h), opt);
-    const int max_steps = 5000, steps_after = 200;
+    const int max_steps = 20000, steps_after = 200;
     int step = 1;
     while (step <= max_steps && e.step().new_cracks == 0) ++step;
     BOOST_REQUIRE_MESSAGE(step <= max_steps, k.name << ": the joint did not break");
@@ -574,7 +593,7 @@ BOOST_AUTO_TEST_CASE(the_ledger_closes_when_a_broken_joints_corners_swap_vertex_
     const double jump = e.ledger().residual() - before;
     int swapped = 0, closed = 0;
     for (const Contact& c : e.contacts().contacts) {
-      swapped += c.vblock == 1 && c.vertex_vertex;
+      swapped += c.vblock == 1 && (c.vertex_vertex || k.shear_fracture_energy);
       closed += c.state != ContactState::Open;
     }
     for (int s = 1; s < steps_after; ++s) e.step();
@@ -583,9 +602,9 @@ BOOST_AUTO_TEST_CASE(the_ledger_closes_when_a_broken_joints_corners_swap_vertex_
                               << " J/m (smallest corner " << smallest_corner << "), residual jump " << jump
                               << " J/m, released by the break " << l.total.joint_breaks << ", friction "
                               << l.total.friction << ", largest balance error " << l.largest_balance_error);
-    BOOST_TEST(swapped == 2, k.name << ": both corners swapped vertex and edge (the case this test is for)");
+    BOOST_TEST(swapped == k.corners_swapped, k.name << ": corners swapped vertex and edge (the case this test is for)");
     BOOST_TEST((closed == 2) == k.corners_stay_closed, k.name);
-    BOOST_TEST(std::abs(jump) <= 0.01 * joint_energy, k.name);
+    BOOST_TEST(std::abs(jump) <= k.jump_tolerance * joint_energy, k.name);
     BOOST_TEST(l.largest_balance_error <= 1e-3, k.name);
   }
 }

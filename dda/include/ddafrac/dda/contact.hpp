@@ -223,21 +223,24 @@ void detect_contacts(const BlockSystem& blocks, const DetectionParams& params, D
                      const std::vector<Contact>& previous, std::vector<Contact>& found);
 
 /// Carries state (state, reference point, forces, slip, cohesion) to the current contact `c` from
-/// the previous list's contact of the same vertex and block pair, or of the same vertex-vertex
-/// corner with vertex and edge swapped; a new contact starts closed (locked) if it touches or is
+/// the previous list's contact of the same vertex and block pair, or of the same corner with
+/// vertex and edge swapped (a vertex-vertex corner, or a joint's corner at its break); a new
+/// contact starts closed (locked) if it touches or is
 /// held (Contact::held), else open (a broken joint starts like a contact that was never bonded).
 /// A tie that is no longer tied (`c.tied` is set before the call) is not carried: the node's
 /// contact starts afresh and the tie's spring is released with the vanished contacts.
 /// Returns the previous contact it carried (null if `c` is new), and whether `c` is the node
 /// contact of a tie just released. `previous_by_vertex` indexes `previous` (DetectionWorkspace
-/// after detection). Reads only `c` of the current list, so the contacts of a list can be carried
-/// in parallel. (docs/design.md §4.7)
+/// after detection); `current` is the list `c` belongs to, sorted as detect_contacts returns it.
+/// Writes only `c`, and reads of `current` only the contacts' identities (pair, vertex), so the
+/// contacts of a list can be carried in parallel. (docs/design.md §4.7)
 struct CarriedState {
   const Contact* previous = nullptr;
   bool tie_released = false;
 };
 CarriedState carry_contact_state(const std::vector<Contact>& previous, const ContactsByVertex& previous_by_vertex,
-                                 Contact& c, const std::vector<Joint>& joints, const BlockSystem& blocks);
+                                 const std::vector<Contact>& current, Contact& c, const std::vector<Joint>& joints,
+                                 const BlockSystem& blocks);
 
 /// Fills pairs and per-block lists of a sorted contact list.
 void build_contact_topology(ContactSet& set, std::size_t block_count);
