@@ -778,7 +778,7 @@ const Contact* swapped_corner(const std::vector<Contact>& previous, const Contac
   const Contact& p = previous[static_cast<std::size_t>(k)];
   if (c.vertex != p.edge0 && c.vertex != p.edge1) return nullptr;
   if (p.vertex_vertex || c.vertex_vertex) return &p;
-  const bool joint_just_broke = p.was_bonded && p.joint >= 0 && joints[static_cast<std::size_t>(p.joint)].broken;
+  const bool joint_just_broke = p.was_bonded && p.joint >= 0 && !p.bonded(joints);
   return joint_just_broke && !has_contact(current, p.vertex, c.pair_low(), c.pair_high()) ? &p : nullptr;
 }
 
