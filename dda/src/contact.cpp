@@ -769,6 +769,11 @@ bool has_contact(const std::vector<Contact>& list, Index v, Index low, Index hig
 /// farther from its end than the vertex-vertex capture radius. Under compression that corner stays
 /// loaded; its spring moves from one copy to the other, unless the held vertex kept a contact of
 /// its own (`current`, the list being carried), which then carries it.
+/// Whether `p`, a contact of the previous step, was held by a virtual joint that is broken now.
+bool joint_just_broke(const Contact& p, const std::vector<Joint>& joints) {
+  return p.was_bonded && p.joint >= 0 && !p.bonded(joints);
+}
+
 const Contact* swapped_corner(const std::vector<Contact>& previous, const ContactsByVertex& by_vertex,
                               const std::vector<Contact>& current, const Contact& c, const std::vector<Joint>& joints) {
   // The vertex's projection on the edge (ref_t, fresh from detection) says which end is nearer.
@@ -778,8 +783,7 @@ const Contact* swapped_corner(const std::vector<Contact>& previous, const Contac
   const Contact& p = previous[static_cast<std::size_t>(k)];
   if (c.vertex != p.edge0 && c.vertex != p.edge1) return nullptr;
   if (p.vertex_vertex || c.vertex_vertex) return &p;
-  const bool joint_just_broke = p.was_bonded && p.joint >= 0 && !p.bonded(joints);
-  return joint_just_broke && !has_contact(current, p.vertex, c.pair_low(), c.pair_high()) ? &p : nullptr;
+  return joint_just_broke(p, joints) && !has_contact(current, p.vertex, c.pair_low(), c.pair_high()) ? &p : nullptr;
 }
 
 }  // namespace
@@ -816,7 +820,14 @@ CarriedState carry_contact_state(const std::vector<Contact>& previous, const Con
   } else if (p->edge0 == c.edge0 && p->edge1 == c.edge1) {
     c.ref_t = p->ref_t;
   }
-  return {p, false};
+  return {p, false, swapped && joint_just_broke(*p, joints)};
+}
+
+bool keep_normal_spring(Contact& c, const Contact& previous) {
+  if (previous.state == ContactState::Open || previous.normal_force <= 0.0 || c.kn <= 0.0) return false;
+  // In compression the spring is kn stiff: ½·kn·(d0 − rest gap)² = what the previous one stored.
+  c.rest_gap = c.d0 + std::sqrt(2.0 * previous.stored_normal / c.kn);
+  return true;
 }
 
 void build_contact_topology(ContactSet& set, std::size_t nb) {

@@ -132,8 +132,9 @@ ContactState judge_frictional(Contact& c, double d, double s, double tol, double
   // no tension. The hysteresis band sits on the closing side: an open contact closes only once
   // it overlaps by more than tol, and its spring pushes from the overlap it started the step
   // with (Contact::rest_gap), so the band adds no energy. One whose rest gap lies deeper than the
-  // band (a released tie's node contact) closes once it overlaps by tol beyond its rest gap.
-  const double closing = c.rest_gap < -tol ? c.rest_gap - tol : -tol;
+  // band (a released tie's node contact), or lies above zero gap (a broken joint's corner that kept its
+  // compression, keep_normal_spring), closes once it passes its rest gap by tol.
+  const double closing = c.rest_gap < -tol || c.rest_gap > 0.0 ? c.rest_gap - tol : -tol;
   if (d > (c.trial == ContactState::Open ? closing : c.rest_gap)) {
     fn = 0.0;
     return ContactState::Open;

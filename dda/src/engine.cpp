@@ -173,6 +173,7 @@ void Engine::detect() {
     }
     properties.assign(c, blocks_, tie_set);
     if (c.tied) c.ref_t = tie_end;  // the other copy, on whichever line holds it
+    const bool spring_kept = from.swapped_at_break && keep_normal_spring(c, *p);
     const bool held = c.held(blocks_.joints);
     if (held) c.state = ContactState::Locked;
     if (first && !held && c.state != ContactState::Open) start_cohesive(c);
@@ -184,7 +185,7 @@ void Engine::detect() {
     const double overlap = std::max(-c.d0, 0.0);
     const bool new_line = !p || p->vertex != c.vertex || p->edge0 != c.edge0;
     c.same_line = !new_line;
-    const double taken = spring_energy(c.kn, overlap) - (p ? p->stored_normal : 0.0);  // J/m
+    const double taken = spring_kept ? 0.0 : spring_energy(c.kn, overlap) - (p ? p->stored_normal : 0.0);  // J/m
     if (!first && !from.tie_released && ((!p && overlap > allowed_) || (new_line && taken > deep_energy))) {
       ++missed;
       deepest = std::max(deepest, overlap);

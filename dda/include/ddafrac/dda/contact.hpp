@@ -42,10 +42,12 @@ struct Contact {
   double shear_force = 0.0;   // N/m
   double slip = 0.0;          // accumulated sliding displacement, m
   double slide_sign = 0.0;    // direction of sliding along the edge (+1/-1)
-  // Gap at which the normal spring is unstretched, m (≤ 0): an ordinary contact that closes
-  // after overlapping inside the open-close band (judge_contact) pushes from the overlap it had
-  // when its step started, not from zero gap, so that the band's overlap, built up with no spring,
-  // adds no energy (docs/design.md §4.4). 0 for joints and for contacts that close from a gap.
+  // Gap at which the normal spring is unstretched, m: an ordinary contact that closes after
+  // overlapping inside the open-close band (judge_contact) pushes from the overlap it had when its
+  // step started, not from zero gap, so that the band's overlap, built up with no spring, adds no
+  // energy (≤ 0, docs/design.md §4.4). 0 for joints and for contacts that close from a gap. The
+  // swapped corner of a joint that has just broken keeps the joint's compression
+  // (keep_normal_spring): its rest gap may be positive, until it next opens.
   double rest_gap = 0.0;
   // Cohesive real joint (closed at t = 0, never failed): carries tension up to σt·l_c and shear
   // up to c·l_c + fn·tanφ; once either is exceeded it keeps friction only, for good.
@@ -229,18 +231,34 @@ void detect_contacts(const BlockSystem& blocks, const DetectionParams& params, D
 /// held (Contact::held), else open (a broken joint starts like a contact that was never bonded).
 /// A tie that is no longer tied (`c.tied` is set before the call) is not carried: the node's
 /// contact starts afresh and the tie's spring is released with the vanished contacts.
-/// Returns the previous contact it carried (null if `c` is new), and whether `c` is the node
-/// contact of a tie just released. `previous_by_vertex` indexes `previous` (DetectionWorkspace
-/// after detection); `current` is the list `c` belongs to, sorted as detect_contacts returns it.
-/// Writes only `c`, and reads of `current` only the contacts' identities (pair, vertex), so the
-/// contacts of a list can be carried in parallel. (docs/design.md §4.7)
+/// Returns the previous contact it carried (null if `c` is new), whether `c` is the node contact
+/// of a tie just released, and whether `c` is the corner of a joint that has just broken, with
+/// vertex and edge swapped (keep_normal_spring then keeps its spring, once `c` has its
+/// properties). `previous_by_vertex` indexes `previous` (DetectionWorkspace after detection);
+/// `current` is the list `c` belongs to, sorted as detect_contacts returns it. Writes only `c`,
+/// and reads of `current` only the contacts' identities (pair, vertex), so the contacts of a list
+/// can be carried in parallel. (docs/design.md §4.7)
 struct CarriedState {
   const Contact* previous = nullptr;
   bool tie_released = false;
+  bool swapped_at_break = false;
 };
 CarriedState carry_contact_state(const std::vector<Contact>& previous, const ContactsByVertex& previous_by_vertex,
                                  const std::vector<Contact>& current, Contact& c, const std::vector<Joint>& joints,
                                  const BlockSystem& blocks);
+
+/// The corner of a joint that has just broken, its vertex and edge swapped
+/// (CarriedState::swapped_at_break), measures its overlap at the other copy of the node, which
+/// lies deeper or shallower than the copy the joint held by the blocks' relative turn and slide
+/// between the copies. So that the joint's compression passes to the contact without a jump in
+/// force or energy, `c` (its kn assigned) takes the rest gap at which its normal spring holds the
+/// compression `previous` held; the shear spring's extension is kept the same way
+/// (carry_contact_state). The rest gap may then be positive: the corner keeps pushing until the
+/// gap exceeds it, and opens there at zero force. Only at the break, once: the copies of an
+/// intact body's node pass their contact back and forth, and offsets kept at every pass would
+/// add up to an overlap nothing pushes out. Returns whether it kept a spring (`previous` closed
+/// and in compression). (docs/design.md §4.7)
+bool keep_normal_spring(Contact& c, const Contact& previous);
 
 /// Fills pairs and per-block lists of a sorted contact list.
 void build_contact_topology(ContactSet& set, std::size_t block_count);
