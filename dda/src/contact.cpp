@@ -755,6 +755,11 @@ bool has_contact(const std::vector<Contact>& list, Index v, Index low, Index hig
   return at != list.end() && key(*at) == std::tuple(low, high, v);
 }
 
+/// Whether `p`, a contact of the previous step, was held by a virtual joint that is broken now.
+bool joint_just_broke(const Contact& p, const std::vector<Joint>& joints) {
+  return p.was_bonded && p.joint >= 0 && !p.bonded(joints);
+}
+
 /// The previous contact of the same pair at the same corner with the roles of vertex and edge
 /// swapped, or null: the angle rules may pick the other reference line of a vertex-vertex
 /// contact as the blocks move, and a vertex-vertex contact whose vertices drift apart becomes a
@@ -769,11 +774,6 @@ bool has_contact(const std::vector<Contact>& list, Index v, Index low, Index hig
 /// farther from its end than the vertex-vertex capture radius. Under compression that corner stays
 /// loaded; its spring moves from one copy to the other, unless the held vertex kept a contact of
 /// its own (`current`, the list being carried), which then carries it.
-/// Whether `p`, a contact of the previous step, was held by a virtual joint that is broken now.
-bool joint_just_broke(const Contact& p, const std::vector<Joint>& joints) {
-  return p.was_bonded && p.joint >= 0 && !p.bonded(joints);
-}
-
 const Contact* swapped_corner(const std::vector<Contact>& previous, const ContactsByVertex& by_vertex,
                               const std::vector<Contact>& current, const Contact& c, const std::vector<Joint>& joints) {
   // The vertex's projection on the edge (ref_t, fresh from detection) says which end is nearer.
