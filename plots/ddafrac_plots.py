@@ -7,6 +7,7 @@ ddafrac calls this after a run; it can also be run by hand to redraw or restyle 
     ddafrac_plots.py sweep TABLE.csv --out DIR
     ddafrac_plots.py study-source STUDY_DIR [--times T1,T2,...]   (study_source_plots.py)
     ddafrac_plots.py study-sensitivity STUDY_DIR                  (study_sensitivity_plots.py)
+    ddafrac_plots.py impact-series STUDY_DIR... --out FIGURE.png   (impact_series_plots.py)
 
 It reads only the files a run writes (history.csv, gauges.csv, cracks.csv, vtk/run.pvd and the
 snapshots it lists, summary.json) and writes PNG files into RUN_DIR/figures/, each whole
@@ -357,6 +358,9 @@ def main():
     import study_sensitivity_plots  # noqa: E402  (beside this script)
 
     study_sensitivity_plots.register(commands, sys.modules[__name__], save)
+    import impact_series_plots  # noqa: E402  (beside this script)
+
+    impact_series_plots.register(commands, sys.modules[__name__], save)
     args = parser.parse_args()
     args.draw(args)
 
