@@ -19,6 +19,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "ddafrac/common/stopwatch.hpp"
 #include "ddafrac/common/thread_governor.hpp"
 #include "ddafrac/dda/contact_period.hpp"
 #include "ddafrac/dda/run.hpp"
@@ -143,14 +144,6 @@ struct RunArguments {
   long parent = 0;  // process whose end stops the run as SIGTERM does (0: none)
 };
 
-std::string eta_text(double seconds) {
-  if (!(seconds >= 0.0) || seconds > 1e7) return "--";
-  const long s = static_cast<long>(seconds);
-  if (s >= 3600) return fmt::format("{}h{:02d}m", s / 3600, static_cast<int>((s % 3600) / 60));
-  if (s >= 60) return fmt::format("{}m{:02d}s", s / 60, static_cast<int>(s % 60));
-  return fmt::format("{}s", s);
-}
-
 void show_progress(const dda::Progress& p, bool tty) {
   const double frac = p.end_time > 0.0 ? std::min(1.0, p.time / p.end_time) : 0.0;
   const double eta = frac > 0.0 ? p.wall * (1.0 - frac) / frac : -1.0;
@@ -160,10 +153,10 @@ void show_progress(const dda::Progress& p, bool tty) {
     fmt::print(stderr, "\r[{}{}] {:5.1f}%  t {:.4g}/{:.4g} s  step {}  dt {:.3g} s  oc {}  cg {}  ETA {}   ",
                std::string(static_cast<std::size_t>(filled), '#'),
                std::string(static_cast<std::size_t>(kWidth - filled), '-'), 100.0 * frac, p.time, p.end_time, p.step,
-               p.dt, p.open_close, p.cg_iterations, eta_text(eta));
+               p.dt, p.open_close, p.cg_iterations, common::duration_text(eta));
   } else {
     fmt::print("t = {:.6g} s of {:.6g} s ({:.1f}%), step {}, dt {:.3g} s, open-close {}, cg {}, ETA {}\n", p.time,
-               p.end_time, 100.0 * frac, p.step, p.dt, p.open_close, p.cg_iterations, eta_text(eta));
+               p.end_time, 100.0 * frac, p.step, p.dt, p.open_close, p.cg_iterations, common::duration_text(eta));
   }
   std::fflush(tty ? stderr : stdout);
 }

@@ -13,6 +13,7 @@
 
 #include "case_ranks.hpp"
 #include "commands.hpp"
+#include "ddafrac/common/stopwatch.hpp"
 #include "ddafrac/common/whole_file.hpp"
 #include "figures.hpp"
 #include "option_checks.hpp"
@@ -101,6 +102,9 @@ std::string status_line(const StudyCase& study_case, const std::vector<StudyCase
     state = "to do";
   } else if (reason == "running" && study_running) {
     state = "running";
+    // At the pace of its run so far: a guess, as a run slows down where cracks multiply.
+    if (t > 0.0 && wall > 0.0 && end > t)
+      state += fmt::format(", about {} left", common::duration_text(wall * (end - t) / t));
   } else if (reason == "numerical_trouble" || reason == "write_failed") {
     state = fmt::format("failed ({})", reason);
   } else if (c.start == Start::FromCheckpoint) {
