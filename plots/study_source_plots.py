@@ -223,10 +223,12 @@ def slit_angle(run):
 
 def brazilian_analysis(h, groups, runs, study_dir, out_dir, save):
     """analysis.md of the Brazilian series (groups: {series: [(case, run_dir)]}, runs: {series:
-    [completed run]}), nothing if no run has completed."""
-    if not any(runs.values()):
-        return
+    [completed run]}); written whatever has run, as study.md links it."""
     md = "# The source study: Brazilian discs\n\n"
+    if not any(runs.values()):
+        sensitivity.write_whole(os.path.join(study_dir, "analysis.md"),
+                                md + "No Brazilian disc of this study has completed yet.\n")
+        return
     md += ("Read from the completed runs by `ddafrac_plots.py study-source`. Indirect tensile strength: "
            "σt = k·2P/(πD) per unit thickness, k the flattened-disc factor of Wang et al. (2004, Int. J. Rock "
            "Mech. Min. Sci. 41, 245–253) for the flats' central angle (k = 1: the Brazilian formula); the "
