@@ -15,7 +15,9 @@
 #     peak force, and the flattened disc's mesh convergence table; the Brazilian pattern figures exist;
 #   - the case that cracked most, run again on 2 threads, writes the same history.csv, cracks.csv
 #     and fragments.csv byte for byte (results do not depend on the thread count);
-#   - every figure is drawn, also by a --report for which a series' last case has not run.
+#   - every figure is drawn, also by a --report for which a series' last case has not run;
+#   - the cross-study figure (ddafrac_plots.py impact-series) puts cases 1-7 in the θ series,
+#     4, 9, 10 in the γ series and 4, 11-15 in the v0 series, read from their scenes alone.
 # Usage: study_source_reduced.sh DDAFRAC WORK_DIR
 set -u
 source "$(dirname "${BASH_SOURCE[0]}")/study_checks.sh"
@@ -68,7 +70,7 @@ for c in impact-case08 impact-case12; do
   grep -q "^$c,.*,impact-case04," "$study/study.csv" || fail "study.csv does not point $c at impact-case04's run"
   [ -e "$study/$c" ] && fail "$c ran again in its own directory"
 done
-commit=$("$exe" --version | sed -n 's/.*(commit \(.*\))$/\1/p')
+commit=$("$exe" --version | sed -n 's/.*(commit \([^,)]*\).*/\1/p')
 grep -q "^Engine: the cases run so far were all run by the build of commit \`$commit\`" "$study/study.md" ||
   fail "study.md does not name the engine $commit"
 for c in $cases; do
@@ -110,4 +112,27 @@ rm -f "$study/figures/cracks_impact-v0.png"
 grep -q "figures not drawn" "$work/report_partial.log" && { cat "$work/report_partial.log"; fail "--report without $last drew no figures"; }
 [ -s "$study/figures/cracks_impact-v0.png" ] || fail "--report without $last: no figures/cracks_impact-v0.png"
 mv "$work/$last.aside" "$study/$last"
+
+# The cross-study figure: each impact series holds its cases, whatever they are called.
+plots="$(dirname "${BASH_SOURCE[0]}")/../../plots"
+"${DDAFRAC_PYTHON:-/usr/bin/python3}" - "$study" "$plots" "$work/series.png" <<'PY' || fail "impact-series"
+import os, subprocess, sys
+study, plots, figure = sys.argv[1:4]
+sys.path.insert(0, plots)
+import ddafrac_plots as h
+import impact_series_plots as series
+runs = series.study_runs(h, study)
+def members(varied):
+    return sorted(os.path.basename(r["dir"]) for r in runs if series.in_series(series.parameters(r), varied))
+expected = {"θ": [f"impact-case0{k}" for k in range(1, 8)],
+            "γ": ["impact-case04", "impact-case09", "impact-case10"],
+            "v0": ["impact-case04"] + [f"impact-case{k}" for k in range(11, 16) if k != 12]}
+for varied, cases in expected.items():
+    if members(varied) != cases:
+        sys.exit(f"the {varied} series holds {members(varied)}, expected {cases}")
+subprocess.run([sys.executable, os.path.join(plots, "ddafrac_plots.py"), "impact-series", study, "--out", figure],
+               check=True, stdout=subprocess.DEVNULL)
+if os.path.getsize(figure) == 0:
+    sys.exit("impact-series wrote an empty figure")
+PY
 echo "PASS"
