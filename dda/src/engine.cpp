@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "contact_commit.hpp"
 #include "ddafrac/dda/contact_mechanics.hpp"
@@ -314,6 +313,15 @@ StepReport Engine::step(double max_dt) {
   const BlockVector d_prev = d_;
   int cuts = 0;
   Energies linearised_end;
+  // A failed trial step of length dt cuts dt and starts again from the step's start; true: dt is
+  // below its floor.
+  const auto cut_below_floor = [&](double dt, long& why) {
+    ++why;
+    ++cuts;
+    dt_ = dt * options_.dt_cut_factor;
+    reset_trials();
+    return dt_ < dt_floor;
+  };
   // Solve, judge and check the step; cut dt and start again until the step is acceptable.
   for (;;) {
     const double dt = std::min(dt_, max_dt);
@@ -325,17 +333,9 @@ StepReport Engine::step(double max_dt) {
       Timer t(stats_.times.assembly);
       block_terms(dt);
     }
-    // A failed trial step cuts dt and starts again from the step's start; true: dt is below its floor.
-    const auto cut_below_floor = [&](long& why) {
-      ++why;
-      ++cuts;
-      dt_ = dt * options_.dt_cut_factor;
-      reset_trials();
-      return dt_ < dt_floor;
-    };
     const OpenClose oc = iterate_open_close(rep);
     if (!oc.converged) {
-      if (cut_below_floor(oc.solver_ok ? stats_.cuts_open_close : stats_.cuts_solver)) {
+      if (cut_below_floor(dt, oc.solver_ok ? stats_.cuts_open_close : stats_.cuts_solver)) {
         if (!oc.solver_ok) trouble("the linear solver did not converge and dt fell below its floor");
         trouble(
             fmt::format("open-close iteration did not converge in {} iterations and dt fell below its floor; worst: {}",
@@ -346,7 +346,7 @@ StepReport Engine::step(double max_dt) {
     Index worst = -1;
     const double dmax = largest_step_displacement(worst);
     if (dmax > allowed_) {
-      if (cut_below_floor(stats_.cuts_displacement))
+      if (cut_below_floor(dt, stats_.cuts_displacement))
         trouble(
             fmt::format("step displacement {:.3g} m exceeds the allowed {:.3g} m even with dt at its floor; worst: {}",
                         dmax, allowed_, describe_block(worst)));
