@@ -19,8 +19,9 @@ namespace {
 constexpr std::string_view kMagic = "ddafrac checkpoint";
 /// Raised whenever the layout of a checkpoint (or of the engine's carried state) changes.
 // 2: the contacts without their linearisation; 3: the residual's sources; 4: the contacts' rest gap;
-// 5: the ledger's mass damping; 6: node ties; 7: ties lost; 8: the joints' damage (softening).
-constexpr int kFormat = 8;
+// 5: the ledger's mass damping; 6: node ties; 7: ties lost; 8: the joints' damage (softening);
+// 9: the friction of a softening joint's damaged part.
+constexpr int kFormat = 9;
 
 constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
 constexpr std::uint64_t kFnvPrime = 1099511628211ull;

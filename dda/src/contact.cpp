@@ -755,6 +755,11 @@ bool has_contact(const std::vector<Contact>& list, Index v, Index low, Index hig
   return at != list.end() && key(*at) == std::tuple(low, high, v);
 }
 
+/// Length of the reference edge of contact c on the blocks' current geometry, m.
+double edge_length(const Contact& c, const BlockSystem& blocks) {
+  return std::hypot(blocks.vx[c.edge1] - blocks.vx[c.edge0], blocks.vy[c.edge1] - blocks.vy[c.edge0]);
+}
+
 /// Whether `p`, a contact of the previous step, was held by a virtual joint that is broken now.
 bool joint_just_broke(const Contact& p, const std::vector<Joint>& joints) {
   return p.was_bonded && p.joint >= 0 && !p.bonded(joints);
@@ -812,15 +817,24 @@ CarriedState carry_contact_state(const std::vector<Contact>& previous, const Con
   c.stored_normal = p->stored_normal;
   c.stored_shear = p->stored_shear;
   c.was_bonded = p->was_bonded;
-  if (swapped && p->ks > 0.0) {
+  c.damaged_slip = p->damaged_slip;
+  c.stored_damaged = p->stored_damaged;
+  c.damaged_state = p->damaged_state;
+  // A softening joint's shear spring ks of the set, its damaged part's share D·ks included.
+  const double shear_spring = p->ks + p->damaged_ks;
+  const bool broke = joint_just_broke(*p, joints);
+  if (swapped && shear_spring > 0.0) {
     // Measured along the other block's edge the relative slip has the same sign, so the shear
     // spring keeps its elastic extension f_s/ks: the reference point sits that far behind.
-    const double l = std::hypot(blocks.vx[c.edge1] - blocks.vx[c.edge0], blocks.vy[c.edge1] - blocks.vy[c.edge0]);
-    c.ref_t -= p->shear_force / p->ks / l;
+    c.ref_t -= p->shear_force / shear_spring / edge_length(c, blocks);
   } else if (p->edge0 == c.edge0 && p->edge1 == c.edge1) {
     c.ref_t = p->ref_t;
+    // At a softening joint's break the spring of the set carries on from the joint's shear force
+    // f_s = ks·s − D·ks·s_p (Contact::damaged_ks): its reference point moves by D·s_p.
+    if (broke && p->damaged_ks > 0.0)
+      c.ref_t += p->damaged_ks * p->damaged_slip / shear_spring / edge_length(c, blocks);
   }
-  return {p, false, swapped && joint_just_broke(*p, joints)};
+  return {p, false, swapped && broke};
 }
 
 bool keep_normal_spring(Contact& c, const Contact& previous) {

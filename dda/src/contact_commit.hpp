@@ -15,6 +15,7 @@ inline ContactEnergy commit_and_store(Contact& c) {
   const ContactEnergy stored = contact_energy(c);
   c.stored_normal = stored.normal;
   c.stored_shear = stored.shear;
+  c.stored_damaged = stored.damaged;
   return stored;
 }
 

@@ -20,6 +20,7 @@ void ContactProperties::assign(Contact& c, const BlockSystem& blocks, Index tie_
   c.damage = bonded ? blocks.joints[static_cast<std::size_t>(c.joint)].damage : 0.0;
   c.kn = js.normal_stiffness;
   c.ks = (1.0 - c.damage) * js.shear_stiffness;
+  c.damaged_ks = c.damage * js.shear_stiffness;
   c.tan_phi = tan_phi_[static_cast<std::size_t>(set)];
   c.cohesion = js.cohesion;
   c.tensile_strength = js.tensile_strength;
@@ -98,10 +99,22 @@ void linearise_contact(Contact& c, ContactLinearisation& lin, const BlockSystem&
   const double w2 = 1.0 - c.ref_t, w3 = c.ref_t;
   lin.gs = -(ux * (w2 * t2.row(0) + w3 * t3.row(0)) + uy * (w2 * t2.row(1) + w3 * t3.row(1))).transpose();
   c.trial = c.state;
+  c.damaged_trial = c.damaged_state;
   c.fn_iter = c.normal_force;
   c.d_iter = c.d0;
   c.s_iter = c.s0;
 }
+
+namespace {
+/// The friction load on a spring sliding in the direction slide_sign with a `share` of the
+/// contact's friction limit tanφ·f_n (f_n of the latest solve): all of it for a sliding contact,
+/// D of it for a softening joint's damaged part. N/m.
+double friction_load(const Contact& c, double share) {
+  return -c.slide_sign * share * c.tan_phi * std::max(c.fn_iter, 0.0);
+}
+}  // namespace
+
+bool damaged_part_slides(const Contact& c) { return c.damaged_ks > 0.0 && c.damaged_trial == ContactState::Sliding; }
 
 ContactCoefficients contact_coefficients(const Contact& c) {
   ContactCoefficients k;
@@ -113,17 +126,41 @@ ContactCoefficients contact_coefficients(const Contact& c) {
       k.ks_eff = c.ks;
       k.fn_rhs = -k.kn_eff * (c.d0 - c.rest_gap);
       k.fs_rhs = -c.ks * c.s0;
+      if (damaged_part_slides(c)) {
+        k.fs_rhs += friction_load(c, c.damage);
+      } else if (c.damaged_ks > 0.0) {
+        k.ks_eff += c.damaged_ks;
+        k.fs_rhs -= c.damaged_ks * (c.s0 - c.damaged_slip);
+      }
       break;
     case ContactState::Sliding:
       k.kn_eff = c.kn;
       k.fn_rhs = -c.kn * (c.d0 - c.rest_gap);
-      k.fs_rhs = -c.slide_sign * c.tan_phi * std::max(c.fn_iter, 0.0);
+      k.fs_rhs = friction_load(c, 1.0);
       break;
   }
   return k;
 }
 
 namespace {
+
+/// The return mapping of a shear spring of stiffness ks (N/m) stretched by s (m) from its
+/// reference point, whose force is limited by friction to `limit` (N/m), from the trial state
+/// `trial`: it slides while the spring would carry more than the limit, in the direction of s
+/// (set in slide_sign), and a sliding one locks once its force in the sliding direction falls
+/// below the limit; `tol` (m) is the hysteresis band of judge_contact. Judging a sliding spring by
+/// the direction of its step increment instead would lock a contact whose carried shear exceeds
+/// a shrinking limit (fn falling) while it unloads slightly, and the locked solution would send
+/// it back to sliding.
+ContactState judge_slip(ContactState trial, double ks, double s, double limit, double tol, double& slide_sign) {
+  if (trial == ContactState::Sliding)
+    return ks * s * slide_sign < limit - ks * tol ? ContactState::Locked : ContactState::Sliding;
+  if (std::abs(ks * s) > limit + ks * tol) {
+    slide_sign = s >= 0.0 ? 1.0 : -1.0;
+    return ContactState::Sliding;
+  }
+  return ContactState::Locked;
+}
 
 /// Open or closed with Mohr-Coulomb friction (no cohesion): the state of an ordinary contact
 /// with gap d and shear s; fn receives its normal force (compression positive).
@@ -140,19 +177,21 @@ ContactState judge_frictional(Contact& c, double d, double s, double tol, double
     return ContactState::Open;
   }
   fn = std::max(0.0, -c.kn * (d - c.rest_gap));
-  // Elastic predictor (return mapping) on the shear spring measured from the reference
-  // point: the contact slides while the spring would carry more than the friction limit in the
-  // sliding direction. Judging a sliding contact by the direction of its step increment
-  // instead would lock a contact whose carried shear exceeds a shrinking limit (fn falling)
-  // while it unloads slightly, and the locked solution would send it back to sliding.
-  const double limit = c.tan_phi * fn;
-  if (c.trial == ContactState::Sliding)
-    return c.ks * s * c.slide_sign < limit - c.ks * tol ? ContactState::Locked : ContactState::Sliding;
-  if (std::abs(c.ks * s) > limit + c.ks * tol) {
-    c.slide_sign = s >= 0.0 ? 1.0 : -1.0;
-    return ContactState::Sliding;
-  }
-  return ContactState::Locked;
+  // Elastic predictor (return mapping) on the shear spring measured from the reference point.
+  return judge_slip(c.trial, c.ks, s, c.tan_phi * fn, tol, c.slide_sign);
+}
+
+/// The damaged part of a bonded softening joint's contact (Contact::damaged_ks) with shear s and
+/// normal force fn (compression positive), judged as judge_slip judges a frictional contact on
+/// D of its friction limit; in tension it slides with no load. Returns whether its state changed.
+bool judge_damaged_part(Contact& c, double s, double fn, double tol) {
+  const double limit = c.damage * c.tan_phi * std::max(fn, 0.0);
+  const ContactState next =
+      limit > 0.0 ? judge_slip(c.damaged_trial, c.damaged_ks, s - c.damaged_slip, limit, tol, c.slide_sign)
+                  : ContactState::Sliding;
+  const bool changed = next != c.damaged_trial;
+  c.damaged_trial = next;
+  return changed;
 }
 
 /// An intact cohesive joint holds (stays locked) while its tension and shear stay within its
@@ -167,7 +206,9 @@ bool cohesion_holds(const Contact& c, double fn, double s) {
 
 bool judge_contact(Contact& c, const ContactLinearisation& lin, const Vec6& dv, const Vec6& de, bool bonded,
                    double tol) {
-  c.friction_force = c.trial == ContactState::Sliding ? contact_coefficients(c).fs_rhs : 0.0;
+  c.friction_force = c.trial == ContactState::Sliding ? contact_coefficients(c).fs_rhs
+                     : damaged_part_slides(c)         ? friction_load(c, c.damage)
+                                                      : 0.0;
   const double d = c.d0 + lin.e.dot(dv) + lin.g.dot(de);
   const double s = c.s0 + lin.es.dot(dv) + lin.gs.dot(de);
   ContactState next = ContactState::Locked;
@@ -175,13 +216,15 @@ bool judge_contact(Contact& c, const ContactLinearisation& lin, const Vec6& dv, 
   // A softening joint's spring that crossed between tension and compression needs another solve
   // with the stiffness of its new side.
   const bool side_changed = c.damage > 0.0 && (d > c.rest_gap) != (c.d_iter > c.rest_gap);
+  bool damaged_part_changed = false;
+  if (bonded && c.damaged_ks > 0.0) damaged_part_changed = judge_damaged_part(c, s, fn, tol);
   if (!bonded) {
     // A cohesive joint that fails stays failed for the rest of the step's iterations (and for
     // good once the step is accepted): the iteration then cannot cycle on its strength.
     if (c.cohesive && !c.cohesion_lost && !cohesion_holds(c, fn, s)) c.cohesion_lost = true;
     if (!c.cohesive || c.cohesion_lost) next = judge_frictional(c, d, s, tol, fn);
   }
-  const bool changed = next != c.trial || side_changed;
+  const bool changed = next != c.trial || side_changed || damaged_part_changed;
   c.trial = next;
   c.fn_iter = fn;
   c.d_iter = d;
@@ -189,14 +232,38 @@ bool judge_contact(Contact& c, const ContactLinearisation& lin, const Vec6& dv, 
   return changed;
 }
 
+namespace {
+/// Commits the damaged part of a bonded softening joint's contact (Contact::damaged_ks) and
+/// returns its shear force, N/m: a stuck part's spring force, a sliding part's friction, whose
+/// plastic slip keeps the elastic part of its spring at that force.
+double commit_damaged_part(Contact& c) {
+  if (c.damaged_ks <= 0.0) return 0.0;
+  if (c.damaged_trial == ContactState::Sliding) {
+    const double force = -friction_load(c, c.damage);
+    c.damaged_slip = c.s_iter - force / c.damaged_ks;
+    return force;
+  }
+  return c.damaged_ks * (c.s_iter - c.damaged_slip);
+}
+}  // namespace
+
+void settle_damaged_part(Contact& c) {
+  if (c.damaged_ks <= 0.0 || c.damaged_trial == ContactState::Sliding) return;
+  const double force = c.damaged_ks * (c.s_iter - c.damaged_slip);
+  if (std::abs(force) <= c.damage * c.tan_phi * std::max(c.fn_iter, 0.0)) return;
+  c.damaged_trial = ContactState::Sliding;
+  c.slide_sign = force >= 0.0 ? 1.0 : -1.0;
+}
+
 void commit_contact(Contact& c) {
   c.state = c.trial;
+  c.damaged_state = c.damaged_trial;
   if (c.cohesion_lost) c.cohesive = false;
   c.cohesion_lost = false;
   c.normal_force = c.fn_iter;
   switch (c.state) {
     case ContactState::Open: c.shear_force = 0.0; break;
-    case ContactState::Locked: c.shear_force = c.ks * c.s_iter; break;
+    case ContactState::Locked: c.shear_force = c.ks * c.s_iter + commit_damaged_part(c); break;
     case ContactState::Sliding: {
       // The spring keeps the elastic part at the friction limit; the rest is plastic slip, by
       // which the reference point moves along the edge.

@@ -49,6 +49,8 @@ double EnergyLedger::balance_error() const {
 namespace {
 /// Elastic part of a sliding contact's shear spring at the friction limit f: ½·f²/ks.
 double sliding_shear_energy(double friction, double ks) { return ks > 0.0 ? 0.5 * friction * friction / ks : 0.0; }
+/// The friction limit of a softening joint's damaged part at the latest solve, D·tanφ·f_n, N/m.
+double damaged_part_friction(const Contact& c) { return c.damage * c.tan_phi * std::max(c.fn_iter, 0.0); }
 }  // namespace
 
 ContactEnergy contact_energy(const Contact& c) {
@@ -59,6 +61,11 @@ ContactEnergy contact_energy(const Contact& c) {
     e.shear = spring_energy(c.ks, c.s_iter);
   else
     e.shear = sliding_shear_energy(c.tan_phi * std::max(c.fn_iter, 0.0), c.ks);
+  if (c.damaged_ks > 0.0) {
+    e.damaged = damaged_part_slides(c) ? sliding_shear_energy(damaged_part_friction(c), c.damaged_ks)
+                                       : spring_energy(c.damaged_ks, c.s_iter - c.damaged_slip);
+    e.shear += e.damaged;
+  }
   return e;
 }
 
@@ -75,6 +82,14 @@ bool closes_from_a_gap(const Contact& c, bool bonded_now) {
   const bool carries_tension = bonded_now || (c.cohesive && !c.cohesion_lost);
   return !carries_tension && c.d0 > c.rest_gap;
 }
+
+/// What a spring of stiffness ks sliding under the friction load f (N/m) dissipates while it slides
+/// by ds (m), J/m: the load does work −f·Δs on the blocks, and what the elastic part of the spring
+/// gave up or took on, from `stored` (at the previous step's end) to its energy at the friction
+/// limit `limit` now, is part of the same slip.
+double slip_dissipation(double f, double ds, double ks, double limit, double stored) {
+  return -f * ds - (sliding_shear_energy(limit, ks) - stored);
+}
 }  // namespace
 
 double contact_start_mismatch(const Contact& c, bool bonded_now) {
@@ -82,7 +97,14 @@ double contact_start_mismatch(const Contact& c, bool bonded_now) {
   double mismatch =
       (closes_from_a_gap(c, bonded_now) ? 0.0 : spring_energy(normal_stiffness(c, c.d0), c.d0 - c.rest_gap)) -
       c.stored_normal;
-  if (c.trial == ContactState::Locked) mismatch += spring_energy(c.ks, c.s0) - c.stored_shear;
+  if (c.trial != ContactState::Locked) return mismatch;
+  mismatch += spring_energy(c.ks, c.s0) - c.stored_shear;
+  // A softening joint's damaged part: stuck, its spring re-measured like the intact part's;
+  // sliding, booked with its friction (contact_step_energy).
+  if (damaged_part_slides(c))
+    mismatch += c.stored_damaged;
+  else if (c.damaged_ks > 0.0)
+    mismatch += spring_energy(c.damaged_ks, c.s0 - c.damaged_slip);
   return mismatch;
 }
 
@@ -95,16 +117,18 @@ StepEnergy contact_step_energy(const Contact& c, bool bonded_now) {
   const double dd = c.d_iter - c.d0;
   e.numerical += 0.5 * normal_stiffness(c, c.d_iter) * dd * dd;
   if (closes_from_a_gap(c, bonded_now)) e.numerical -= spring_energy(c.kn, c.d0 - c.rest_gap);
+  const double ds = c.s_iter - c.s0;
   if (c.trial == ContactState::Locked) {
-    const double ds = c.s_iter - c.s0;
     e.numerical += 0.5 * c.ks * ds * ds;
+    if (damaged_part_slides(c))
+      e.friction += slip_dissipation(c.friction_force, ds, c.damaged_ks, damaged_part_friction(c), c.stored_damaged);
+    else if (c.damaged_ks > 0.0)
+      e.numerical += 0.5 * c.damaged_ks * ds * ds;
     return e;
   }
-  // Sliding: the friction load does work −f·Δs on the blocks; what the elastic part of the
-  // shear spring gave up or took on since the previous step is part of the same slip.
   const double start_shear = sliding_shear_energy(c.friction_force, c.ks);
-  const double end_shear = contact_energy(c).shear;
-  e.friction = -c.friction_force * (c.s_iter - c.s0) - (end_shear - start_shear);
+  const double slid = slip_dissipation(c.friction_force, ds, c.ks, c.tan_phi * std::max(c.fn_iter, 0.0), start_shear);
+  e.friction += slid;
   (broke ? e.joint_breaks : e.friction) += c.stored_shear - start_shear;
   return e;
 }

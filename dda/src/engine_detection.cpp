@@ -135,6 +135,7 @@ void Engine::reset_trials() {
   for (std::int64_t k = 0; k < nc; ++k) {
     Contact& c = set_.contacts[k];
     c.trial = c.state;
+    c.damaged_trial = c.damaged_state;
     c.fn_iter = c.normal_force;
     c.slide_sign = saved_slide_sign_[k];
     c.cohesion_lost = false;

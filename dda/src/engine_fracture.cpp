@@ -112,7 +112,10 @@ std::vector<JointForce> Engine::joint_forces() const {
           c.damage > 0.0 && c.normal_force < 0.0 ? c.normal_force / (1.0 - c.damage) : c.normal_force;
       // The shear spring pushes the vertex by -shear_force along the edge: on block_a directly
       // when it owns the vertex, as the reaction otherwise.
-      out.shear += (c.vblock == jt.block_a ? -1.0 : 1.0) * c.shear_force * proj;
+      const double towards_a = c.vblock == jt.block_a ? -1.0 : 1.0;
+      out.shear += towards_a * c.shear_force * proj;
+      // (1 − D)·ks·s + D·ks·(s − s_p) = ks·s − D·ks·s_p: the undamaged spring's force is ks·s.
+      out.shear_undamaged += towards_a * (c.shear_force + c.damaged_ks * c.damaged_slip) * proj;
       ++out.contacts;
     }
   }
@@ -178,7 +181,7 @@ struct Softened {
 Softened soften(const Joint& jt, const JointForce& f, const scene::JointSet& set, FailureRatios& ratio) {
   JointForce undamaged = f;
   undamaged.normal = f.normal_undamaged;
-  undamaged.shear = f.shear / (1.0 - jt.damage);
+  undamaged.shear = f.shear_undamaged;
   const JointStrength strength = strength_under(undamaged, jt.length, set);
   ratio = ratios_against(undamaged, strength);
   const double tensile_ductility =
@@ -267,6 +270,7 @@ double Engine::follow_joint_damage() {
     properties.assign(c, blocks_);  // the joint's damage and the weakened shear spring
     // Committed again at the step's end state with the weakened springs (a bonded contact is locked).
     c.fn_iter = -normal_stiffness(c, c.d_iter) * (c.d_iter - c.rest_gap);
+    settle_damaged_part(c);
     return before - detail::commit_and_store(c).total();
   });
 }

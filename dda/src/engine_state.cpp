@@ -28,7 +28,7 @@ namespace ddafrac::dda {
 
 // A field added to one of these records must be added to its function below as well, or a
 // resumed run silently starts from its default: the sizes make the compiler say so.
-static_assert(sizeof(Contact) == 240, "Contact changed: update serialize(Contact) in engine_state.cpp");
+static_assert(sizeof(Contact) == 264, "Contact changed: update serialize(Contact) in engine_state.cpp");
 static_assert(sizeof(Statistics) == 216, "Statistics changed: update serialize(Statistics)");
 static_assert(sizeof(Joint) == 48, "Joint changed: update serialize(Joint)");
 
@@ -59,6 +59,7 @@ void serialize(Archive& a, Contact& c, unsigned) {
   a& c.state& c.ref_t& c.normal_force& c.shear_force& c.slip& c.slide_sign& c.rest_gap;
   a& c.cohesive& c.cohesive_length& c.stored_normal& c.stored_shear& c.was_bonded;
   a& c.kn& c.ks& c.tan_phi& c.cohesion& c.tensile_strength& c.damage;
+  a& c.damaged_ks& c.damaged_slip& c.stored_damaged& c.damaged_state& c.damaged_trial;
   a& c.d0& c.s0& c.edge_length;
   a& c.trial& c.fn_iter& c.friction_force& c.d_iter& c.s_iter& c.cohesion_lost& c.carried& c.same_line;
 }

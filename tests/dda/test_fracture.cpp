@@ -771,6 +771,72 @@ BOOST_AUTO_TEST_CASE(a_joint_softening_in_shear_dissipates_its_shear_fracture_en
   BOOST_TEST(std::abs(brittle.separation_at_break - peak_slip) <= 2.0 * 0.01 * dt);
 }
 
+// Softening keeps friction (Contact::damaged_ks, docs/design.md §5): pushed in and slid along,
+// a joint softening in shear carries (1 − D)·ks·s on its intact part and, on its damaged part,
+// Coulomb friction up to D·tanφ·f_n. The intact part's law starts at the strength c·l + f_n·tanφ,
+// above the friction f_n·tanφ, so the shear force |f_s| never falls below f_n·tanφ while the joint
+// softens, and at the break, where D reaches 1, it is that friction: the broken joint's corners
+// slide on from it (same φ) without a jump. A law that softened the whole spring let |f_s| fall
+// to (1 − D)·ks·s, 25% of the friction in the step before the break here, and jump back to the
+// friction after it. Checked: |f_s| ≥ f_n·tanφ on the softening branch, to 1e-6 of c·l (the
+// joint's force is two contacts' projected on the joint, exact to round-off while the right
+// square barely turns); |f_s| in the step before the break within two steps' fall of the law
+// of f_n·tanφ (the damage follows the slip a step behind, so the intact part still carries up
+// to a step's fall when the joint breaks), and in the step after it sliding at f_n·tanφ, as
+// close to the force before; the ledger closing to 1e-4, and friction dissipated before the break.
+BOOST_AUTO_TEST_CASE(a_joint_softening_under_compression_keeps_its_friction) {
+  const double h = 0.01, cohesion = 1e6, phi = 30.0, kn = 1e10, dt = 1e-6;
+  const double push = 0.003, slide = 0.02;  // m/s
+  scene::Scene sc = joint_scene(dt, kn, 1e7, cohesion, phi);
+  sc.joint_sets[0].shear_fracture_energy = 5.0;         // J/m²: δc ≈ 10·δ0 here
+  sc.joint_sets[1].friction_angle = phi * kPi / 180.0;  // the broken joint keeps the same friction
+  const double tan_phi = std::tan(phi * kPi / 180.0);
+  EngineOptions opt;
+  hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
+  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, -push, slide);
+  Engine e(sc, two_squares(h), opt);
+  double least_margin = 1e300, friction_before_break = 0.0;  // N/m, J/m
+  JointForce before;
+  int break_step = -1, softening_steps = 0;
+  for (int k = 1; k <= 5000 && break_step < 0; ++k) {
+    const StepReport rep = e.step();
+    const JointForce f = e.joint_forces().at(0);
+    if (rep.new_cracks > 0) {
+      break_step = k;
+      break;
+    }
+    if (e.blocks().joints[0].damage > 0.0) {
+      ++softening_steps;
+      least_margin = std::min(least_margin, std::abs(f.shear) + f.normal * tan_phi);  // f.normal < 0
+    }
+    before = f;
+    friction_before_break = e.ledger().total.friction;
+  }
+  BOOST_REQUIRE_MESSAGE(break_step > 0, "the joint did not break");
+  BOOST_REQUIRE(softening_steps > 20);
+  BOOST_REQUIRE_EQUAL(e.cracks().size(), 1u);
+  BOOST_TEST(static_cast<int>(e.cracks()[0].type) == static_cast<int>(CrackType::Shear));
+  const double friction_at_break = -before.normal * tan_phi;
+  const double law_step = (cohesion * h + friction_at_break) / softening_steps;  // N/m, the law's mean fall per step
+  e.step();                                                                      // the break takes effect
+  const JointForce after = e.joint_forces().at(0);
+  const double after_ratio = std::abs(after.shear) / (-after.normal * tan_phi);
+  BOOST_TEST_MESSAGE("softening under compression: "
+                     << softening_steps << " steps, break at step " << break_step << ", least |f_s| − f_n·tanφ "
+                     << least_margin << " N/m, |f_s| " << std::abs(before.shear)
+                     << " N/m before the break against f_n·tanφ " << friction_at_break << " (law's fall per step "
+                     << law_step << "), after it " << std::abs(after.shear) << ", " << after_ratio
+                     << " of f_n·tanφ; friction dissipated before the break " << friction_before_break
+                     << " J/m, largest balance error " << e.ledger().largest_balance_error);
+  BOOST_TEST(before.normal < 0.0);  // under compression
+  BOOST_TEST(least_margin >= -1e-6 * cohesion * h);
+  BOOST_TEST(std::abs(std::abs(before.shear) - friction_at_break) <= 2.0 * law_step);
+  BOOST_TEST(std::abs(after_ratio - 1.0) <= 1e-6);
+  BOOST_TEST(std::abs(std::abs(after.shear) - std::abs(before.shear)) <= 2.0 * law_step);
+  BOOST_TEST(friction_before_break > 0.0);
+  BOOST_TEST(e.ledger().largest_balance_error <= 1e-4);
+}
+
 // A joint whose springs hold more than G_f·l at its strength (μ ≤ 1) cannot soften: it breaks
 // in the same step as a brittle one, with the same forces on the way.
 BOOST_AUTO_TEST_CASE(a_joint_holding_more_than_its_fracture_energy_breaks_at_its_strength) {

@@ -57,6 +57,8 @@ struct Contact {
   // contact was held then, an intact virtual joint or a tie (energy_ledger.hpp).
   double stored_normal = 0.0, stored_shear = 0.0;
   bool was_bonded = false;
+  // Of a softening joint's damaged part (damaged_ks below): stuck (Locked) or sliding.
+  ContactState damaged_state = ContactState::Locked;
   // Properties.
   double kn = 0.0, ks = 0.0;  // penalty springs, N/m
   double tan_phi = 0.0;
@@ -64,12 +66,22 @@ struct Contact {
   // Damage of its joint while bonded (Joint::damage; 0 otherwise): the normal spring carries
   // tension with (1 − damage)·kn (normal_stiffness); ks already holds the damaged shear spring.
   double damage = 0.0;
+  // The damaged part of a softening joint's shear (docs/design.md §5), beside the intact part's
+  // spring ks = (1 − D)·ks_set: a spring of D·ks_set (N/m; 0 unless bonded with D > 0) measured
+  // from the part's plastic slip s_p (damaged_slip, m, along the edge as s), which slides with
+  // Coulomb friction up to D·tanφ·f_n under compression and freely in tension. While the
+  // contact is bonded, slide_sign and friction_force serve this part (the contact itself is
+  // locked). Its state: damaged_state, damaged_trial.
+  double damaged_ks = 0.0;
+  double damaged_slip = 0.0;
+  double stored_damaged = 0.0;  // J/m, its share of stored_shear at the end of the previous step
   // Per step (geometry at step start): gap and shear (their gradients: ContactLinearisation).
   double d0 = 0.0;  // normal gap, m, positive = apart
   double s0 = 0.0;  // shear displacement from the reference point along the edge, m
   double edge_length = 0.0;
   // Per open-close iteration.
   ContactState trial = ContactState::Open;  // state assumed by the current assembly
+  ContactState damaged_trial = ContactState::Locked;  // damaged_state assumed by it
   double fn_iter = 0.0;                     // normal force of the latest solve, N/m
   double friction_force = 0.0;              // N/m, friction load of the latest assembly (sliding)
   double d_iter = 0.0, s_iter = 0.0;        // gap and shear of the latest solve, m

@@ -74,7 +74,8 @@ inline JointStrength joint_strength(double tensile_strength, double cohesion, do
 }
 
 /// Judges one contact from the solution of its two blocks; returns true if its state changed.
-/// Bonded contacts stay locked (they carry tension; breaking is the fracture check's job).
+/// Bonded contacts stay locked (they carry tension; breaking is the fracture check's job); the
+/// damaged part of a softening joint's contact sticks or slides on D of the friction limit.
 /// Cohesive contacts (intact real joints) stay locked, tension included, while the tension is
 /// within σt·l_c and the shear within c·l_c + fn·tanφ; beyond either they lose cohesion and
 /// tension for good (commit_contact) and are judged as ordinary frictional contacts.
@@ -91,7 +92,18 @@ bool judge_contact(Contact& c, const ContactLinearisation& linear, const Vec6& d
                    const Vec6& d_edge_block, bool bonded, double tolerance = 0.0);
 
 /// After the step is accepted: forces, slip and reference point carried to the next step (a
-/// sliding contact's reference point moves by its plastic slip).
+/// sliding contact's reference point moves by its plastic slip, a softening joint's sliding
+/// damaged part's plastic slip with it).
 void commit_contact(Contact& c);
+
+/// Whether the damaged part of a bonded softening joint's contact (Contact::damaged_ks) slides in
+/// the current trial.
+bool damaged_part_slides(const Contact& c);
+
+/// After a joint's damage rose (Engine::follow_joint_damage, c's properties assigned anew): its
+/// damaged part slides if its spring, measured from its plastic slip, would carry more than its
+/// friction at the step's end state; the part that has just started to be damaged has no slip
+/// yet. Commit the contact again afterwards.
+void settle_damaged_part(Contact& c);
 
 }  // namespace ddafrac::dda

@@ -39,9 +39,11 @@ inline double spring_energy(double k, double x) { return 0.5 * k * x * x; }
 
 /// Energy a contact's springs store at the end of an accepted step, J/m. Closed contacts:
 /// ½·kn·d²; locked ones add ½·ks·s², sliding ones the elastic part of their shear spring at the
-/// friction limit, ½·(tanφ·fn)²/ks.
+/// friction limit, ½·(tanφ·fn)²/ks. The damaged part of a softening joint's shear
+/// (Contact::damaged_ks) adds its spring's energy measured from its plastic slip.
 struct ContactEnergy {
   double normal = 0.0, shear = 0.0;
+  double damaged = 0.0;  // the damaged part's share of `shear`
   double total() const { return normal + shear; }
 };
 ContactEnergy contact_energy(const Contact& c);

@@ -62,6 +62,9 @@ struct JointForce {
   // The normal force its springs would carry undamaged at the same gaps (= normal while
   // Joint::damage is 0): what drives a softening joint's damage.
   double normal_undamaged = 0.0;
+  // Likewise the shear force: the intact spring ks of the set at the same slips, which the
+  // damaged part's friction does not count towards (Contact::damaged_ks).
+  double shear_undamaged = 0.0;
   int contacts = 0;
   /// An intact joint that carries contacts: the joints the fracture check judges.
   bool judged(const Joint& j) const { return !j.broken && contacts > 0; }
