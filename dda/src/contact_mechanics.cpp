@@ -183,12 +183,17 @@ ContactState judge_frictional(Contact& c, double d, double s, double tol, double
 
 /// The damaged part of a bonded softening joint's contact (Contact::damaged_ks) with shear s and
 /// normal force fn (compression positive), judged as judge_slip judges a frictional contact on
-/// D of its friction limit; in tension it slides with no load. Returns whether its state changed.
+/// D of its friction limit; in tension it slides with no load, in the direction of its stretch
+/// (so that, closing again, it keeps sliding the way it went rather than lock at once and flip
+/// the iteration between the two sides of its normal spring). Returns whether its state changed.
 bool judge_damaged_part(Contact& c, double s, double fn, double tol) {
   const double limit = c.damage * c.tan_phi * std::max(fn, 0.0);
-  const ContactState next =
-      limit > 0.0 ? judge_slip(c.damaged_trial, c.damaged_ks, s - c.damaged_slip, limit, tol, c.slide_sign)
-                  : ContactState::Sliding;
+  const double stretch = s - c.damaged_slip;  // m
+  ContactState next = ContactState::Sliding;
+  if (limit > 0.0)
+    next = judge_slip(c.damaged_trial, c.damaged_ks, stretch, limit, tol, c.slide_sign);
+  else
+    c.slide_sign = stretch >= 0.0 ? 1.0 : -1.0;
   const bool changed = next != c.damaged_trial;
   c.damaged_trial = next;
   return changed;
