@@ -105,13 +105,11 @@ void linearise_contact(Contact& c, ContactLinearisation& lin, const BlockSystem&
   c.s_iter = c.s0;
 }
 
+double friction_limit(const Contact& c, double share) { return share * c.tan_phi * std::max(c.fn_iter, 0.0); }
+
 namespace {
-/// The friction load on a spring sliding in the direction slide_sign with a `share` of the
-/// contact's friction limit tanφ·f_n (f_n of the latest solve): all of it for a sliding contact,
-/// D of it for a softening joint's damaged part. N/m.
-double friction_load(const Contact& c, double share) {
-  return -c.slide_sign * share * c.tan_phi * std::max(c.fn_iter, 0.0);
-}
+/// The friction load on a spring sliding in the direction slide_sign at friction_limit(c, share), N/m.
+double friction_load(const Contact& c, double share) { return -c.slide_sign * friction_limit(c, share); }
 }  // namespace
 
 bool damaged_part_slides(const Contact& c) { return c.damaged_ks > 0.0 && c.damaged_trial == ContactState::Sliding; }
@@ -244,7 +242,7 @@ namespace {
 double commit_damaged_part(Contact& c) {
   if (c.damaged_ks <= 0.0) return 0.0;
   if (c.damaged_trial == ContactState::Sliding) {
-    const double force = -friction_load(c, c.damage);
+    const double force = c.slide_sign * friction_limit(c, c.damage);
     c.damaged_slip = c.s_iter - force / c.damaged_ks;
     return force;
   }
@@ -255,7 +253,7 @@ double commit_damaged_part(Contact& c) {
 void settle_damaged_part(Contact& c) {
   if (c.damaged_ks <= 0.0 || c.damaged_trial == ContactState::Sliding) return;
   const double force = c.damaged_ks * (c.s_iter - c.damaged_slip);
-  if (std::abs(force) <= c.damage * c.tan_phi * std::max(c.fn_iter, 0.0)) return;
+  if (std::abs(force) <= friction_limit(c, c.damage)) return;
   c.damaged_trial = ContactState::Sliding;
   c.slide_sign = force >= 0.0 ? 1.0 : -1.0;
 }

@@ -49,8 +49,6 @@ double EnergyLedger::balance_error() const {
 namespace {
 /// Elastic part of a sliding contact's shear spring at the friction limit f: ½·f²/ks.
 double sliding_shear_energy(double friction, double ks) { return ks > 0.0 ? 0.5 * friction * friction / ks : 0.0; }
-/// The friction limit of a softening joint's damaged part at the latest solve, D·tanφ·f_n, N/m.
-double damaged_part_friction(const Contact& c) { return c.damage * c.tan_phi * std::max(c.fn_iter, 0.0); }
 }  // namespace
 
 ContactEnergy contact_energy(const Contact& c) {
@@ -60,9 +58,9 @@ ContactEnergy contact_energy(const Contact& c) {
   if (c.trial == ContactState::Locked)
     e.shear = spring_energy(c.ks, c.s_iter);
   else
-    e.shear = sliding_shear_energy(c.tan_phi * std::max(c.fn_iter, 0.0), c.ks);
+    e.shear = sliding_shear_energy(friction_limit(c, 1.0), c.ks);
   if (c.damaged_ks > 0.0) {
-    e.damaged = damaged_part_slides(c) ? sliding_shear_energy(damaged_part_friction(c), c.damaged_ks)
+    e.damaged = damaged_part_slides(c) ? sliding_shear_energy(friction_limit(c, c.damage), c.damaged_ks)
                                        : spring_energy(c.damaged_ks, c.s_iter - c.damaged_slip);
     e.shear += e.damaged;
   }
@@ -121,14 +119,13 @@ StepEnergy contact_step_energy(const Contact& c, bool bonded_now) {
   if (c.trial == ContactState::Locked) {
     e.numerical += 0.5 * c.ks * ds * ds;
     if (damaged_part_slides(c))
-      e.friction += slip_dissipation(c.friction_force, ds, c.damaged_ks, damaged_part_friction(c), c.stored_damaged);
+      e.friction += slip_dissipation(c.friction_force, ds, c.damaged_ks, friction_limit(c, c.damage), c.stored_damaged);
     else if (c.damaged_ks > 0.0)
       e.numerical += 0.5 * c.damaged_ks * ds * ds;
     return e;
   }
   const double start_shear = sliding_shear_energy(c.friction_force, c.ks);
-  const double slid = slip_dissipation(c.friction_force, ds, c.ks, c.tan_phi * std::max(c.fn_iter, 0.0), start_shear);
-  e.friction += slid;
+  e.friction += slip_dissipation(c.friction_force, ds, c.ks, friction_limit(c, 1.0), start_shear);
   (broke ? e.joint_breaks : e.friction) += c.stored_shear - start_shear;
   return e;
 }
