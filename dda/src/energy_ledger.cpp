@@ -49,6 +49,10 @@ double EnergyLedger::balance_error() const {
 namespace {
 /// Elastic part of a sliding contact's shear spring at the friction limit f: ½·f²/ks.
 double sliding_shear_energy(double friction, double ks) { return ks > 0.0 ? 0.5 * friction * friction / ks : 0.0; }
+
+/// A contact whose joint (or tie) held it at the previous step and no longer does: its joint has
+/// just broken, and what it stored beyond what its springs start the step with is released.
+bool just_broke(const Contact& c, bool bonded_now) { return c.was_bonded && !bonded_now; }
 }  // namespace
 
 ContactEnergy contact_energy(const Contact& c) {
@@ -69,7 +73,7 @@ ContactEnergy contact_energy(const Contact& c) {
 
 StepEnergy released_energy(const Contact& c, bool bonded_now) {
   StepEnergy e;
-  (c.was_bonded && !bonded_now ? e.joint_breaks : e.numerical) += c.stored_normal + c.stored_shear;
+  (just_broke(c, bonded_now) ? e.joint_breaks : e.numerical) += c.stored_normal + c.stored_shear;
   return e;
 }
 
@@ -96,7 +100,9 @@ double contact_start_mismatch(const Contact& c, bool bonded_now) {
       (closes_from_a_gap(c, bonded_now) ? 0.0 : spring_energy(normal_stiffness(c, c.d0), c.d0 - c.rest_gap)) -
       c.stored_normal;
   if (c.trial != ContactState::Locked) return mismatch;
-  mismatch += spring_energy(c.ks, c.s0) - c.stored_shear;
+  // A joint's corner that stays stuck when the joint breaks releases the difference (its joint's
+  // damaged part and the rest of its intact part, carried into one spring: contact_step_energy).
+  if (!just_broke(c, bonded_now)) mismatch += spring_energy(c.ks, c.s0) - c.stored_shear;
   // A softening joint's damaged part: stuck, its spring re-measured like the intact part's;
   // sliding, booked with its friction (contact_step_energy).
   if (damaged_part_slides(c))
@@ -109,7 +115,7 @@ double contact_start_mismatch(const Contact& c, bool bonded_now) {
 StepEnergy contact_step_energy(const Contact& c, bool bonded_now) {
   if (c.trial == ContactState::Open) return released_energy(c, bonded_now);
   StepEnergy e;
-  const bool broke = c.was_bonded && !bonded_now;
+  const bool broke = just_broke(c, bonded_now);
   // Normal spring along the linearised step: ½·kn·Δd². The fictitious start energy of a contact
   // that closes from a gap is not the scheme's to dissipate.
   const double dd = c.d_iter - c.d0;
@@ -118,6 +124,10 @@ StepEnergy contact_step_energy(const Contact& c, bool bonded_now) {
   const double ds = c.s_iter - c.s0;
   if (c.trial == ContactState::Locked) {
     e.numerical += 0.5 * c.ks * ds * ds;
+    // A softening joint that breaks before its damage reaches 1 leaves its corner one spring
+    // holding the joint's force (carry_contact_state): ½·D·(1 − D)·ks·s_p² less than its two
+    // parts stored.
+    if (broke) e.joint_breaks += c.stored_shear - spring_energy(c.ks, c.s0);
     if (damaged_part_slides(c))
       e.friction += slip_dissipation(c.friction_force, ds, c.damaged_ks, friction_limit(c, c.damage), c.stored_damaged);
     else if (c.damaged_ks > 0.0)
