@@ -846,7 +846,7 @@ struct CompressedSlide {
   double pushed = 0.0;                 // normal force when the push stops, N/m
   double normal = 0.0;                 // mean normal force over the softening, N/m (negative: compression)
   double normal_spread = 0.0;          // largest |f_n − mean| over the softening, N/m
-  double slip_at_break = 0.0;          // m
+  double slip_at_break = 0.0;          // slip in the step before the break, m
   double joint_breaks = 0.0;           // the ledger's joint breaks once the break took effect, J/m
   double friction_before_break = 0.0;  // the ledger's friction in the step before the break, J/m
   double largest_balance_error = 0.0;
@@ -871,7 +871,7 @@ CompressedSlide slide_under_compression(const scene::Scene& sc, double h, double
     a.y_start -= slide * e.time();
     a.vy = slide;
   }
-  double normal_sum = 0.0, normal_low = 0.0, normal_high = -1e300;
+  double normal_sum = 0.0, normal_low = 1e300, normal_high = -1e300;
   for (int k = 1; k <= max_steps; ++k) {
     const StepReport rep = e.step();
     if (rep.new_cracks > 0) {
