@@ -124,9 +124,9 @@ StepEnergy contact_step_energy(const Contact& c, bool bonded_now) {
   const double ds = c.s_iter - c.s0;
   if (c.trial == ContactState::Locked) {
     e.numerical += 0.5 * c.ks * ds * ds;
-    // A softening joint that breaks before its damage reaches 1 leaves its corner one spring
-    // holding the joint's force (carry_contact_state): ½·D·(1 − D)·ks·s_p² less than its two
-    // parts stored.
+    // A corner stuck across its joint's break keeps the joint's spring (brittle: nothing to
+    // release) or, for a softening joint that breaks before its damage reaches 1, one spring
+    // holding the joint's force (carry_contact_state), ½·D·(1 − D)·ks·s_p² below its two parts.
     if (broke) e.joint_breaks += c.stored_shear - spring_energy(c.ks, c.s0);
     if (damaged_part_slides(c))
       e.friction += slip_dissipation(c.friction_force, ds, c.damaged_ks, friction_limit(c, c.damage), c.stored_damaged);

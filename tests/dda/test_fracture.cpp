@@ -661,6 +661,12 @@ struct SofteningRun {
   std::vector<double> forces;  // force of the drive's mode per step, N/m
 };
 
+/// Steps an engine whose joint broke in its last step until the break has taken effect (the
+/// joint's contacts carried on or opened).
+void let_the_break_take_effect(Engine& e) {
+  for (int k = 0; k < 5; ++k) e.step();
+}
+
 SofteningRun drive_until_broken(const scene::Scene& sc, double h, Drive drive, double speed, int max_steps) {
   EngineOptions opt;
   hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
@@ -685,7 +691,7 @@ SofteningRun drive_until_broken(const scene::Scene& sc, double h, Drive drive, d
     if (e.blocks().joints[0].damage > 0.0 && separation < law.spent)
       r.worst_softening_error = std::max(r.worst_softening_error, std::abs(f - law.force(separation)));
   }
-  for (int k = 0; k < 5; ++k) e.step();  // the break takes effect and the joint's contacts open
+  let_the_break_take_effect(e);
   r.dissipated = e.ledger().total.joint_breaks;
   r.largest_balance_error = e.ledger().largest_balance_error;
   return r;
@@ -843,7 +849,6 @@ namespace {
 /// until it broke in shear.
 struct CompressedSlide {
   int break_step = -1, softening_steps = 0;
-  double pushed = 0.0;                 // normal force when the push stops, N/m
   double normal = 0.0;                 // mean normal force over the softening, N/m (negative: compression)
   double normal_spread = 0.0;          // largest |f_n − mean| over the softening, N/m
   double slip_at_break = 0.0;          // slip in the step before the break, m
@@ -852,18 +857,24 @@ struct CompressedSlide {
   double largest_balance_error = 0.0;
 };
 
-/// Pushes the right square of two_squares in at `push` (m/s) for `push_steps` steps, then holds
-/// its normal position (its anchors' targets stop where they are) and slides it along the joint at
-/// `slide` (m/s) until the joint breaks (at most max_steps).
-CompressedSlide slide_under_compression(const scene::Scene& sc, double h, double push, int push_steps, double slide,
-                                        int max_steps) {
+/// two_squares with the left square held and the right one pushed in at `push` (m/s) for
+/// `push_steps` steps.
+Engine pushed_in(const scene::Scene& sc, double h, double push, int push_steps) {
   EngineOptions opt;
   hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
   hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, -push, 0.0);
   Engine e(sc, two_squares(h), opt);
   for (int k = 0; k < push_steps; ++k) e.step();
+  return e;
+}
+
+/// Pushes the right square of two_squares in (pushed_in), then holds its normal position (its
+/// anchors' targets stop where they are) and slides it along the joint at `slide` (m/s) until the
+/// joint breaks (at most max_steps).
+CompressedSlide slide_under_compression(const scene::Scene& sc, double h, double push, int push_steps, double slide,
+                                        int max_steps) {
+  Engine e = pushed_in(sc, h, push, push_steps);
   CompressedSlide r;
-  r.pushed = e.joint_forces().at(0).normal;
   for (Anchor& a : e.blocks().anchors) {
     if (a.block != 1) continue;
     a.x_start += a.vx * e.time();  // the targets go on from where the push left them
@@ -890,9 +901,9 @@ CompressedSlide slide_under_compression(const scene::Scene& sc, double h, double
     r.friction_before_break = e.ledger().total.friction;
   }
   BOOST_REQUIRE_MESSAGE(r.break_step > 0, "the joint did not break");
-  r.normal = r.softening_steps > 0 ? normal_sum / r.softening_steps : r.pushed;
+  r.normal = r.softening_steps > 0 ? normal_sum / r.softening_steps : 0.0;
   r.normal_spread = r.softening_steps == 0 ? 0.0 : std::max(normal_high - r.normal, r.normal - normal_low);
-  for (int k = 0; k < 5; ++k) e.step();  // the break takes effect
+  let_the_break_take_effect(e);
   r.joint_breaks = e.ledger().total.joint_breaks;
   r.largest_balance_error = e.ledger().largest_balance_error;
   return r;
@@ -926,8 +937,8 @@ BOOST_AUTO_TEST_CASE(a_joint_softening_under_compression_spends_its_shear_fractu
   sc.joint_sets[1].friction_angle = phi * kPi / 180.0;
   const double tan_phi = std::tan(phi * kPi / 180.0), stiffness = 2.0 * sc.joint_sets[0].shear_stiffness;
   // G_IIf for a ductility μ = δc/δ0 = 10 at the compression the push gives.
-  const CompressedSlide probe = slide_under_compression(sc, h, push, push_steps, slide, 20000);  // brittle
-  const double probe_strength = cohesion * h - probe.pushed * tan_phi;
+  const double pushed = pushed_in(sc, h, push, push_steps).joint_forces().at(0).normal;  // N/m
+  const double probe_strength = cohesion * h - pushed * tan_phi;
   const double ductility = 10.0;
   sc.joint_sets[0].shear_fracture_energy = 0.5 * ductility * probe_strength * probe_strength / (stiffness * h);
   const double G = *sc.joint_sets[0].shear_fracture_energy;

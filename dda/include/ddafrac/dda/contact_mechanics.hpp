@@ -52,14 +52,14 @@ inline double normal_stiffness(const Contact& c, double gap) {
   return gap > c.rest_gap ? (1.0 - c.damage) * c.kn : c.kn;
 }
 
-/// Spring and load coefficients of a contact in its trial state for the assembly:
-/// K += kn_eff·[e;g][e;g]^T + ks_eff·[es;gs][es;gs]^T,  F += fn_rhs·[e;g] + fs_rhs·[es;gs]
-/// (per state: the table of docs/design.md §4.3).
 /// A `share` of contact c's friction limit tanφ·f_n, f_n its normal force of the latest solve
 /// (compression positive, none in tension): all of it for a sliding contact, D of it for a
 /// softening joint's damaged part. N/m.
 double friction_limit(const Contact& c, double share);
 
+/// Spring and load coefficients of a contact in its trial state for the assembly:
+/// K += kn_eff·[e;g][e;g]^T + ks_eff·[es;gs][es;gs]^T,  F += fn_rhs·[e;g] + fs_rhs·[es;gs]
+/// (per state: the table of docs/design.md §4.3).
 struct ContactCoefficients {
   double kn_eff = 0.0, ks_eff = 0.0, fn_rhs = 0.0, fs_rhs = 0.0;
 };
