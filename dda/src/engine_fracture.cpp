@@ -175,9 +175,10 @@ struct Softened {
 };
 
 /// The damage of a softening joint with the forces `f` its springs carry now, judged on the
-/// ratios they would carry undamaged (returned in `ratio`). Each mode on its own law where the
-/// set gives shear its own fracture energy (the larger damage wins, no interaction), else the
-/// larger ratio on the tension's law.
+/// ratios they would carry undamaged (returned in `ratio`). With the modes combined
+/// (ModeInteraction::Quadratic), on the drive √(r1² + r2²) and the mix of the two modes'
+/// ductilities. Otherwise each mode on its own law where the set gives shear its own fracture
+/// energy (the larger damage wins), else the larger ratio on the tension's law.
 Softened soften(const Joint& jt, const JointForce& f, const scene::JointSet& set, FailureRatios& ratio) {
   JointForce undamaged = f;
   undamaged.normal = f.normal_undamaged;
@@ -186,12 +187,20 @@ Softened soften(const Joint& jt, const JointForce& f, const scene::JointSet& set
   ratio = ratios_against(undamaged, strength);
   const double tensile_ductility =
       softening_ductility(set.fracture_energy, set.tensile_strength, f.contacts * set.normal_stiffness, jt.length);
-  if (!set.shear_fracture_energy)
-    return {std::max(jt.damage, softening_damage(ratio.largest(), tensile_ductility)), ratio.type()};
-  // μ of shear from its strength under the joint's compression (Pa) and its shear springs.
+  // μ of shear from its strength under the joint's compression (Pa) and its shear springs; the
+  // tension's without a shear fracture energy of its own.
   const double shear_strength = strength.shear / jt.length;
   const double shear_ductility =
-      softening_ductility(*set.shear_fracture_energy, shear_strength, f.contacts * set.shear_stiffness, jt.length);
+      set.shear_fracture_energy
+          ? softening_ductility(*set.shear_fracture_energy, shear_strength, f.contacts * set.shear_stiffness, jt.length)
+          : tensile_ductility;
+  if (set.mode_interaction == scene::ModeInteraction::Quadratic) {
+    const double drive = std::hypot(ratio.r1, ratio.r2);
+    const double ductility = mixed_mode_ductility(ratio.r1, ratio.r2, tensile_ductility, shear_ductility);
+    return {std::max(jt.damage, softening_damage(drive, ductility)), ratio.type()};
+  }
+  if (!set.shear_fracture_energy)
+    return {std::max(jt.damage, softening_damage(ratio.largest(), tensile_ductility)), ratio.type()};
   const double tensile = softening_damage(ratio.r1, tensile_ductility);
   const double shear = softening_damage(ratio.r2, shear_ductility);
   const CrackType mode = tensile == shear ? ratio.type() : (tensile > shear ? CrackType::Tensile : CrackType::Shear);

@@ -179,6 +179,16 @@ std::vector<JointSet> parse_joint_sets(TableReader t, const Analysis& analysis) 
             .value_or(0.0);
     set.shear_fracture_energy = j.number(
         "shear_fracture_energy", NumberRule::non_negative("J/m^2, 0 for joints brittle in shear"), Need::Optional);
+    if (const auto interaction =
+            j.choice("mode_interaction", {to_string(ModeInteraction::None), to_string(ModeInteraction::Quadratic)},
+                     Need::Optional)) {
+      set.mode_interaction =
+          *interaction == to_string(ModeInteraction::Quadratic) ? ModeInteraction::Quadratic : ModeInteraction::None;
+      if (set.mode_interaction == ModeInteraction::Quadratic && !set.softens())
+        j.problem("mode_interaction",
+                  "combines the modes of a softening joint: it needs fracture_energy or "
+                  "shear_fracture_energy above 0");
+    }
     // Softening weakens a joint's own springs: it needs them to be what the criterion judges and
     // to carry the tension across the joint alone.
     const char* softening_key = set.fracture_energy > 0.0 ? "fracture_energy" : "shear_fracture_energy";

@@ -8,6 +8,10 @@ const char* to_string(FractureLoad load) {
   return load == FractureLoad::BlockStress ? "block_stress" : "joint_springs";
 }
 
+const char* to_string(ModeInteraction interaction) {
+  return interaction == ModeInteraction::Quadratic ? "quadratic" : "none";
+}
+
 const Body* Scene::find_body(const std::string& body_name) const {
   for (const Body& body : bodies)
     if (body.name == body_name) return &body;

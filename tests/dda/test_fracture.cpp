@@ -995,3 +995,111 @@ BOOST_AUTO_TEST_CASE(a_joint_holding_more_than_its_fracture_energy_breaks_at_its
   BOOST_TEST(a.break_step == b.break_step);
   BOOST_TEST(a.forces == b.forces, boost::test_tools::per_element());
 }
+
+namespace {
+
+/// A failure ratio from which the mix of a loaded joint is measured: below it the first steps'
+/// round-off and the square's settling in its anchors dominate.
+constexpr double kLoadedRatio = 0.5;
+/// How far the mix may move while the joint is loaded for the closed forms to hold: the right
+/// square turns a little in its anchors as the joint softens (1.3–1.4% measured).
+constexpr double kLargestMixChange = 0.02;
+
+/// What a joint of two_squares pulled apart and slid at once did until it broke.
+struct MixedRun {
+  int break_step = -1;
+  double peak_normal = 0.0;         // largest normal force, N/m
+  double largest_mix_change = 0.0;  // largest |r1 − r2|/max(r1, r2) of the undamaged ratios, loaded
+  double dissipated = 0.0;          // the ledger's joint breaks after the break took effect, J/m
+  double largest_balance_error = 0.0;
+};
+
+/// The right square of two_squares driven at (pull, slide) m/s until its joint broke (at most
+/// max_steps steps); the ratios r1 = f_n/(σt·l) and r2 = |f_s|/(c·l) of the undamaged forces.
+MixedRun pull_and_slide_until_broken(const scene::Scene& sc, double h, double pull, double slide, int max_steps) {
+  EngineOptions opt;
+  hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
+  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, pull, slide);
+  Engine e(sc, two_squares(h), opt);
+  const scene::JointSet& js = sc.joint_sets[0];
+  MixedRun r;
+  for (int k = 1; k <= max_steps; ++k) {
+    if (e.step().new_cracks > 0) {
+      r.break_step = k;
+      break;
+    }
+    const JointForce f = e.joint_forces().at(0);
+    r.peak_normal = std::max(r.peak_normal, f.normal);
+    const double r1 = f.normal_undamaged / (js.tensile_strength * h);
+    const double r2 = std::abs(f.shear_undamaged) / (js.cohesion * h);
+    if (std::max(r1, r2) >= kLoadedRatio)
+      r.largest_mix_change = std::max(r.largest_mix_change, std::abs(r1 - r2) / std::max(r1, r2));
+  }
+  let_the_break_take_effect(e);
+  r.dissipated = e.ledger().total.joint_breaks;
+  r.largest_balance_error = e.ledger().largest_balance_error;
+  return r;
+}
+
+}  // namespace
+
+// Both modes at once (JointSet::mode_interaction): pulled apart and slid in proportion, so that
+// the tension's and the shear's failure ratios stay equal (r1 = r2: the mix cos²α = sin²α = ½),
+// with c = σt and no friction. Without interaction both springs soften on the one drive
+// x = r1 = r2, and the joint dissipates all of both modes' energies: G_f·l in tension and
+// G_II·l = G_f·l·kn/ks in shear (the tension's μ on the shear springs). Combined, the drive is
+// √(r1² + r2²): the joint starts softening at r1 = r2 = 1/√2 (its normal force σt·l/√2) and
+// dissipates half of each, cos²α·(μ/μ_I)·G_f·l + sin²α·(μ/μ_II)·G_IIf·l with μ the harmonic mix
+// of the modes' μ_I and μ_II, which meets G_I/G_f + G_II/G_IIf = 1; with a shear energy of its
+// own, G_IIf·l = 2·G_II·l here (μ_II = 2·μ_I, μ = 4/3·μ_I), two thirds of each. The damage lags a
+// step as in the single-mode tests: the work beyond the closed form is within the sum of the two
+// modes' lag bounds, Δδ·s·l·(1 + ln μ) each, and halves with the step. The peak normal force may
+// exceed the onset's by the mix's change (the square turns a little: r1/r2 moves by up to 1.4%).
+BOOST_AUTO_TEST_CASE(a_joint_softening_in_both_modes_at_once_dissipates_the_mixed_mode_energy) {
+  const double h = 0.01, strength = 1e6, kn = 1e10, dt = 1e-6, ductility = 10.0;  // μ_I
+  scene::Scene sc = joint_scene(dt, kn, strength, strength, 0.0);
+  scene::JointSet& js = sc.joint_sets[0];
+  js.fracture_energy = 0.5 * strength * ductility * strength * h / (2.0 * kn);            // G_f = ½·σt·δc
+  const double pull = 0.01, slide = pull * js.normal_stiffness / js.shear_stiffness;      // m/s: r1 = r2
+  const double tension_energy = js.fracture_energy * h;                                   // G_f·l, J/m
+  const double shear_energy = tension_energy * js.normal_stiffness / js.shear_stiffness;  // G_II·l
+  const double opening_step = pull * dt, slip_step = slide * dt;
+  const double lag_bound = (opening_step + slip_step) * strength * h * (1.0 + std::log(2.0 * ductility));
+
+  struct Case {
+    const char* name;
+    scene::ModeInteraction interaction;
+    std::optional<double> shear_fracture_energy;  // J/m²
+    double expected;                              // J/m
+    double onset;                                 // normal force at the onset, N/m
+  };
+  const Case cases[] = {
+      {"none", scene::ModeInteraction::None, std::nullopt, tension_energy + shear_energy, strength * h},
+      {"quadratic", scene::ModeInteraction::Quadratic, std::nullopt, 0.5 * (tension_energy + shear_energy),
+       strength * h / std::sqrt(2.0)},
+      {"quadratic, G_IIf = 2·G_II", scene::ModeInteraction::Quadratic, 2.0 * shear_energy / h,
+       2.0 / 3.0 * (tension_energy + shear_energy), strength * h / std::sqrt(2.0)},
+  };
+  for (const Case& c : cases) {
+    js.mode_interaction = c.interaction;
+    js.shear_fracture_energy = c.shear_fracture_energy;
+    const MixedRun r = pull_and_slide_until_broken(sc, h, pull, slide, 20000);
+    const MixedRun half = pull_and_slide_until_broken(sc, h, 0.5 * pull, 0.5 * slide, 40000);
+    BOOST_REQUIRE(r.break_step > 0 && half.break_step > 0);
+    const double excess = r.dissipated - c.expected, excess_half = half.dissipated - c.expected;
+    BOOST_TEST_MESSAGE(c.name << ": peak normal force " << r.peak_normal << " N/m against the onset " << c.onset
+                              << ", break at step " << r.break_step << ", dissipated " << r.dissipated
+                              << " J/m against " << c.expected << " (" << excess / c.expected << "; at half the speed "
+                              << excess_half / c.expected << ", bound " << lag_bound / c.expected
+                              << "), mix changed by " << r.largest_mix_change << ", balance "
+                              << r.largest_balance_error);
+    BOOST_TEST(r.largest_mix_change <= kLargestMixChange);  // the drive is proportional
+    BOOST_TEST(r.peak_normal <= c.onset * (1.0 + r.largest_mix_change));
+    BOOST_TEST(r.peak_normal >= c.onset - 2.0 * js.normal_stiffness * opening_step);
+    BOOST_TEST(excess >= 0.0);
+    BOOST_TEST(excess <= lag_bound);
+    BOOST_TEST(excess_half >= 0.0);
+    BOOST_TEST(excess_half <= 0.6 * excess);
+    BOOST_TEST(r.largest_balance_error <= 1e-4);
+  }
+}

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "ddafrac/dda/engine.hpp"
 #include "ddafrac/dda/geometry.hpp"
 #include "ddafrac/dda/linear_system.hpp"
+#include "ddafrac/dda/softening.hpp"
 #include "ddafrac/dda/synthetic.hpp"
 #include "support.hpp"
 
@@ -559,6 +561,25 @@ BOOST_AUTO_TEST_CASE(sliding_is_a_fixed_point_when_the_carried_shear_exceeds_a_f
   c.s0 = elastic;
   BOOST_TEST(judge_contact(c, lin, dv, de, false, tol));
   BOOST_TEST(static_cast<int>(c.trial) == static_cast<int>(ContactState::Locked));
+}
+
+// The ductility of a joint loaded in both modes (scene::ModeInteraction::Quadratic): each pure
+// mode keeps its own μ, an even mix (r1 = r2) takes the harmonic mean, and a brittle mode (μ = 0)
+// or one without strength (an infinite ratio) in the mix makes the joint brittle.
+BOOST_AUTO_TEST_CASE(the_mixed_mode_ductility_is_the_harmonic_mix_of_the_modes) {
+  const double tension = 10.0, shear = 20.0;
+  BOOST_TEST(mixed_mode_ductility(1.3, 0.0, tension, shear) == tension);
+  BOOST_TEST(mixed_mode_ductility(0.0, 1.3, tension, shear) == shear);
+  BOOST_TEST(mixed_mode_ductility(0.7, 0.7, tension, shear) == 2.0 / (1.0 / tension + 1.0 / shear),
+             boost::test_tools::tolerance(1e-15));
+  // cos²α = 0.36, sin²α = 0.64 (ratios 0.6 and 0.8)
+  BOOST_TEST(mixed_mode_ductility(0.6, 0.8, tension, shear) == 1.0 / (0.36 / tension + 0.64 / shear),
+             boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(mixed_mode_ductility(0.6, 0.8, tension, tension) == tension, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(mixed_mode_ductility(0.6, 0.8, 0.0, shear) == 0.0);
+  BOOST_TEST(mixed_mode_ductility(0.0, 0.8, 0.0, shear) == shear);  // brittle tension, not loaded in it
+  BOOST_TEST(mixed_mode_ductility(0.6, std::numeric_limits<double>::infinity(), tension, shear) == 0.0);
+  BOOST_TEST(softening_damage(std::hypot(0.6, 0.8) * 1.5, mixed_mode_ductility(0.6, 0.8, tension, shear)) > 0.0);
 }
 
 // A softening joint's spring (Contact::damage) carries tension with (1 − D)·kn and compression

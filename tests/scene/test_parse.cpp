@@ -256,6 +256,22 @@ BOOST_AUTO_TEST_CASE(a_fracture_energy_softens_virtual_joints_judged_on_their_sp
                  "contacts.real_joints", 25, "only virtual joints");
 }
 
+// How a softening joint combines its modes: by default each on its own (none); "quadratic"
+// combines them, and only for a softening set; any other name is refused with the choices.
+BOOST_AUTO_TEST_CASE(a_softening_joint_set_chooses_how_its_modes_combine) {
+  BOOST_TEST(static_cast<int>(scene::parse_scene(kValid, "ok.toml").joint_sets[0].mode_interaction) ==
+             static_cast<int>(scene::ModeInteraction::None));
+  const std::string mixed =
+      replaced(kValid, "tensile_strength = 7.86e6",
+               "tensile_strength = 7.86e6\nfracture_energy = 80\nmode_interaction = \"quadratic\"");
+  BOOST_TEST(static_cast<int>(scene::parse_scene(mixed, "ok.toml").joint_sets[0].mode_interaction) ==
+             static_cast<int>(scene::ModeInteraction::Quadratic));
+  expect_problem(
+      replaced(kValid, "tensile_strength = 7.86e6", "tensile_strength = 7.86e6\nmode_interaction = \"quadratic\""),
+      "joints.virtual.mode_interaction", 19, "needs fracture_energy or shear_fracture_energy");
+  expect_problem(replaced(mixed, "\"quadratic\"", "\"linear\""), "joints.virtual.mode_interaction", 20, "quadratic");
+}
+
 // A fracture energy of its own for shear (mode II): absent, shear softens with the tension's law;
 // given alone, the joints soften in shear and stay brittle in tension, with the same conditions.
 BOOST_AUTO_TEST_CASE(a_shear_fracture_energy_softens_shear_on_its_own_law) {

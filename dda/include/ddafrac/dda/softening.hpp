@@ -13,6 +13,15 @@ namespace ddafrac::dda {
 /// G_f·l at the strength, and the joint breaks there (brittle). 0 without a tensile strength.
 double softening_ductility(double fracture_energy, double tensile_strength, double stiffness, double length);
 
+/// μ of a joint loaded in tension and shear at once (scene::ModeInteraction::Quadratic), its
+/// failure ratios r1 (tension) and r2 (shear) in the mix cos²α = r1²/(r1² + r2²): the harmonic mix
+/// 1/(cos²α/μ_I + sin²α/μ_II) of the two modes' ductilities. Driven in proportion to the drive
+/// √(r1² + r2²), the joint then dissipates G_I = cos²α·(μ/μ_I)·G_f and G_II = sin²α·(μ/μ_II)·G_IIf
+/// per unit length, which meet G_I/G_f + G_II/G_IIf = 1 (the linear energy criterion of mixed-mode
+/// cohesive laws). A mode with μ = 0 (brittle) in the mix makes the joint brittle; either pure mode
+/// gives its own μ.
+double mixed_mode_ductility(double r1, double r2, double tensile_ductility, double shear_ductility);
+
 /// Damage of a joint driven to x, the largest failure ratio its springs would carry undamaged
 /// (x = δ/δ0 in uniform tension): 0 up to x = 1, then the secant damage of the linear branch,
 /// 1 − (μ − x)/(x·(μ − 1)), reaching 1 (broken) at x = μ; with μ ≤ 1, 1 as soon as x > 1.

@@ -23,6 +23,13 @@ struct Material {
   double poisson = 0.0;  // -, in [0, 0.5)
 };
 
+/// How a softening joint loaded in tension and shear at once combines the two modes
+/// (docs/design.md §5): each mode judged on its own and the larger damage kept, or one drive,
+/// the quadratic sum of the two failure ratios, softening on a mix of the two modes' ductilities.
+enum class ModeInteraction { None, Quadratic };
+/// Its name in a scene file (joints.<set>.mode_interaction).
+const char* to_string(ModeInteraction interaction);
+
 /// Strength and stiffness of a family of joints (virtual joints of a body, or real joints).
 struct JointSet {
   std::string name;
@@ -40,6 +47,11 @@ struct JointSet {
   // shear, on a softening law of its own (docs/design.md §5). Absent: shear softens with the
   // tension's ductility μ (one fracture energy for both modes). 0: brittle in shear.
   std::optional<double> shear_fracture_energy = std::nullopt;
+  // How a softening joint combines tension and shear (ModeInteraction). None: the larger of the
+  // two modes' damages, so a joint loaded in both dissipates up to the sum of both modes'
+  // energies. Quadratic: onset where r1² + r2² = 1, and G_I/G_f + G_II/G_IIf = 1 at the break
+  // under proportional loading.
+  ModeInteraction mode_interaction = ModeInteraction::None;
 
   /// A joint of this set softens past its strength in one mode or both.
   bool softens() const { return fracture_energy > 0.0 || shear_fracture_energy.value_or(0.0) > 0.0; }
