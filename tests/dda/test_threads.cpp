@@ -41,6 +41,7 @@ struct Variant {
   double stress_radius = 0.0;    // m, analysis.fracture_stress_radius
   double fracture_energy = 0.0;  // J/m², of the disc's virtual joints
   std::optional<double> shear_fracture_energy = std::nullopt;  // J/m², of the disc's virtual joints (mode II's own)
+  scene::ModeInteraction modes = scene::ModeInteraction::None;  // of the disc's virtual joints
   double strength_factor = 1.0;  // on the tensile strength and cohesion of the disc's virtual joints
 };
 
@@ -61,6 +62,7 @@ ThreadRun run_with_threads(int threads, const fs::path& root, const Variant& v =
       scene::JointSet& js = s.joint_sets[*b.virtual_joints];
       js.fracture_energy = v.fracture_energy;
       js.shear_fracture_energy = v.shear_fracture_energy;
+      js.mode_interaction = v.modes;
       js.tensile_strength *= v.strength_factor;
       js.cohesion *= v.strength_factor;
     }
@@ -142,4 +144,16 @@ BOOST_AUTO_TEST_CASE(one_and_two_threads_are_bit_identical_with_shear_softening_
   v.shear_fracture_energy = 2.0 * kThreadTestFractureEnergy;
   v.strength_factor = kThreadTestStrengthFactor;
   expect_softening_identical(v, "ddafrac-dda-threads-mode2-");
+}
+
+// The same with the two modes combined (JointSet::mode_interaction = quadratic): the mix is judged
+// per joint on its own ratios.
+BOOST_AUTO_TEST_CASE(one_and_two_threads_are_bit_identical_with_the_modes_combined) {
+  Variant v;
+  v.tag = "-mixed";
+  v.fracture_energy = kThreadTestFractureEnergy;
+  v.shear_fracture_energy = 2.0 * kThreadTestFractureEnergy;
+  v.modes = scene::ModeInteraction::Quadratic;
+  v.strength_factor = kThreadTestStrengthFactor;
+  expect_softening_identical(v, "ddafrac-dda-threads-mixed-");
 }
