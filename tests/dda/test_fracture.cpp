@@ -83,6 +83,14 @@ void hold(std::vector<Anchor>& out, Index block, const std::vector<meshes::Point
   for (const auto& p : corners) out.push_back({block, p.x, p.y, p.x, p.y, vx, vy});
 }
 
+/// two_squares with the left square held and the right one's anchors moving at (vx, vy) m/s.
+Engine right_square_driven(const scene::Scene& sc, double h, double vx, double vy) {
+  EngineOptions opt;
+  hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
+  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, vx, vy);
+  return Engine(sc, two_squares(h), opt);
+}
+
 struct BreakRecord {
   int step = -1;
   JointForce before, at;  // joint force in the step before the break and in the breaking step
@@ -113,10 +121,7 @@ BreakRecord run_to_break(Engine& e, int max_steps) {
 BOOST_AUTO_TEST_CASE(tension_break_at_the_tensile_strength) {
   const double h = 0.01, sigma_t = 1e6;
   const scene::Scene sc = joint_scene(1e-6, 1e10, sigma_t, 1e7, 30.0);
-  EngineOptions opt;
-  hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
-  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, 0.01, 0.0);
-  Engine e(sc, two_squares(h), opt);
+  Engine e = right_square_driven(sc, h, 0.01, 0.0);
   BOOST_REQUIRE_EQUAL(e.blocks().joints.size(), 1u);
   const BreakRecord r = run_to_break(e, 5000);
   BOOST_REQUIRE(r.step > 1);
@@ -144,10 +149,7 @@ BOOST_AUTO_TEST_CASE(tension_break_at_the_tensile_strength) {
 BOOST_AUTO_TEST_CASE(shear_break_under_compression) {
   const double h = 0.01, cohesion = 1e6, phi = 30.0;
   const scene::Scene sc = joint_scene(1e-6, 1e10, 1e7, cohesion, phi);
-  EngineOptions opt;
-  hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
-  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, -0.01, 0.02);  // pushes in and slides up
-  Engine e(sc, two_squares(h), opt);
+  Engine e = right_square_driven(sc, h, -0.01, 0.02);  // pushes in and slides up
   const BreakRecord r = run_to_break(e, 5000);
   BOOST_REQUIRE(r.step > 1);
   const double tan_phi = std::tan(phi * kPi / 180.0);
@@ -262,10 +264,7 @@ BOOST_AUTO_TEST_CASE(type_follows_the_larger_ratio) {
   for (const double cohesion : {1e3, 1e1}) {
     const double h = 0.01;
     const scene::Scene sc = joint_scene(1e-6, 1e10, 1e3, cohesion, 30.0);
-    EngineOptions opt;
-    hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
-    hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, 1.0, 0.5);
-    Engine e(sc, two_squares(h), opt);
+    Engine e = right_square_driven(sc, h, 1.0, 0.5);
     for (int k = 0; k < 5 && e.cracks().empty(); ++k) e.step();
     BOOST_REQUIRE_EQUAL(e.cracks().size(), 1u);
     const CrackEvent& c = e.cracks()[0];
@@ -668,11 +667,8 @@ void let_the_break_take_effect(Engine& e) {
 }
 
 SofteningRun drive_until_broken(const scene::Scene& sc, double h, Drive drive, double speed, int max_steps) {
-  EngineOptions opt;
-  hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
   const bool pull = drive == Drive::Pull;
-  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, pull ? speed : 0.0, pull ? 0.0 : speed);
-  Engine e(sc, two_squares(h), opt);
+  Engine e = right_square_driven(sc, h, pull ? speed : 0.0, pull ? 0.0 : speed);
   const SofteningLaw law = law_of(sc.joint_sets[0], h, drive);
   SofteningRun r;
   for (int k = 1; k <= max_steps; ++k) {
@@ -797,10 +793,7 @@ BOOST_AUTO_TEST_CASE(a_joint_softening_under_compression_keeps_its_friction) {
   sc.joint_sets[0].shear_fracture_energy = 5.0;         // J/m²: δc ≈ 10·δ0 here
   sc.joint_sets[1].friction_angle = phi * kPi / 180.0;  // the broken joint keeps the same friction
   const double tan_phi = std::tan(phi * kPi / 180.0);
-  EngineOptions opt;
-  hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
-  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, -push, slide);
-  Engine e(sc, two_squares(h), opt);
+  Engine e = right_square_driven(sc, h, -push, slide);
   double least_margin = 1e300, friction_before_break = 0.0;  // N/m, J/m
   JointForce before;
   int break_step = -1, softening_steps = 0;
@@ -860,10 +853,7 @@ struct CompressedSlide {
 /// two_squares with the left square held and the right one pushed in at `push` (m/s) for
 /// `push_steps` steps.
 Engine pushed_in(const scene::Scene& sc, double h, double push, int push_steps) {
-  EngineOptions opt;
-  hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
-  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, -push, 0.0);
-  Engine e(sc, two_squares(h), opt);
+  Engine e = right_square_driven(sc, h, -push, 0.0);
   for (int k = 0; k < push_steps; ++k) e.step();
   return e;
 }
@@ -1017,10 +1007,7 @@ struct MixedRun {
 /// The right square of two_squares driven at (pull, slide) m/s until its joint broke (at most
 /// max_steps steps); the ratios r1 = f_n/(σt·l) and r2 = |f_s|/(c·l) of the undamaged forces.
 MixedRun pull_and_slide_until_broken(const scene::Scene& sc, double h, double pull, double slide, int max_steps) {
-  EngineOptions opt;
-  hold(opt.anchors, 0, {{0, 0}, {0, h}}, 0.0, 0.0);
-  hold(opt.anchors, 1, {{2 * h, 0}, {2 * h, h}}, pull, slide);
-  Engine e(sc, two_squares(h), opt);
+  Engine e = right_square_driven(sc, h, pull, slide);
   const scene::JointSet& js = sc.joint_sets[0];
   MixedRun r;
   for (int k = 1; k <= max_steps; ++k) {
