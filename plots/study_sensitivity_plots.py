@@ -22,6 +22,8 @@ summary.json, scene.resolved.toml, history.csv, gauges.csv and loading.csv, and 
                                 the θ series' crack patterns over σ1 at the end, per kn/E = X
     figures/damping.png         the flattened disc's force-displacement curves per mass damping η,
                                 and the peak force against η beside the static run's
+    figures/spread.png          case 4's cracks and crack length against time in each run of the
+                                spread family (its impact speed changed by a few millionths)
 
 Only runs that completed are analysed; the others are listed as missing. Every PNG and
 analysis.md are written whole (temporary name, then rename).
@@ -61,6 +63,11 @@ UNCHANGED = 0.01
 PLAUSIBLE_ORDERS = (0.5, 3.0)
 # A measure whose values across a family differ by at most this (relative) is drawn as flat.
 FLAT_RANGE = 1e-9
+# Spread family: a measure that moves by at most this (relative) across its runs is reproducible
+# (the runs differ by millionths; a crack result that moves by less than 1% is the physics').
+REPRODUCIBLE = 0.01
+PPM = 1e6  # millionths per unit
+SPREAD_WIDEST_LINE, SPREAD_NARROWEST_LINE = 5.0, 1.0  # points: the spread figure's runs, first to last
 # A loading rate is quasi-static when its peak force is within this of the static run's.
 QUASI_STATIC_TOLERANCE = 0.02
 # The platen force's ringing is measured as the RMS of its departure from a straight line over
@@ -650,6 +657,73 @@ def theta_section(h, runs, figures, save):
     return md
 
 
+def impact_speed(run):
+    """The disc's impact speed (m/s) from the run's resolved scene."""
+    velocity = run["scene"].get("bodies", {}).get("disc", {}).get("velocity", [0.0, 0.0])
+    return math.hypot(*velocity)
+
+
+def scatter_line(label, values, runs):
+    """One row of the spread table: a measure's mean, range and relative spread over the runs that
+    reached it, and a verdict (REPRODUCIBLE)."""
+    reached = [v for v in values if v is not None]
+    if not reached:
+        return f"| {label} | – | – | – | – | not reached in any run |\n"
+    mean = sum(reached) / len(reached)
+    low, high = min(reached), max(reached)
+    spread = (high - low) / abs(mean) if mean else 0.0
+    deviation = float(np.std(reached, ddof=1)) if len(reached) > 1 else 0.0
+    if len(reached) < len(runs):
+        verdict = f"reached in {len(reached)} of {len(runs)} runs"
+    elif spread == 0.0:
+        verdict = "the same in every run"
+    elif spread <= REPRODUCIBLE:
+        verdict = f"reproducible (within {REPRODUCIBLE * PERCENT:g}%)"
+    else:
+        verdict = "scatters: a difference below the range is not resolved by one run"
+    return (f"| {label} | {cell(mean)} | {cell(low)} – {cell(high)} | {cell(deviation, '{:.2g}')} | "
+            f"{spread * PERCENT:.1f} | {verdict} |\n")
+
+
+def spread_section(h, runs, figures, save):
+    """Case 4 with its impact speed changed by a few millionths: every run's measures, their
+    scatter, and the cracks against time of every run in one figure."""
+    runs = sorted(runs, key=impact_speed)
+    reference = impact_speed(runs[0])
+    change = lambda r: (impact_speed(r) / reference - 1.0) * PPM  # noqa: E731
+    md = ("## Spread: case 4 with its impact speed changed by a few millionths\n\n"
+          f"Impact speed {reference:g} m/s and that × (1 + n·10⁻⁶); what moves is how one run's choices fall "
+          "(which state a contact inside the open–close band settles in, which joint breaks first), not the "
+          "physics.\n\n")
+    md += measure_table(runs, "speed change (10⁻⁶)", change, "{:.2g}") + "\n"
+    md += ("| measure | mean | range | standard deviation | range / mean (%) | verdict |\n"
+           "|---|--:|--:|--:|--:|---|\n")
+    for label, f in MEASURES:
+        md += scatter_line(label, [f(r) for r in runs], runs)
+    md += scatter_line("cracks (all)", [(r["cracks"].get("tensile") or 0) + (r["cracks"].get("shear") or 0)
+                                        for r in runs], runs) + "\n"
+    figure, (counts, lengths) = plt.subplots(1, 2, figsize=(13, 4.5))
+    # Runs that agree draw over each other: each narrower than the one before, so all stay visible.
+    widths = np.linspace(SPREAD_WIDEST_LINE, SPREAD_NARROWEST_LINE, len(runs))
+    for r, width in zip(runs, widths):
+        label = f"+{change(r):.0f}·10⁻⁶" if change(r) > 0 else "as specified"
+        history = h.read_columns(os.path.join(r["dir"], "history.csv"))
+        counts.step(h.numbers(history, "t") * MICROSECONDS, h.numbers(history, "cracks_total"), where="post",
+                    linewidth=width, label=label)
+        fragments = h.read_columns(os.path.join(r["dir"], "fragments.csv"))
+        length = h.numbers(fragments, "crack_length_tensile") + h.numbers(fragments, "crack_length_shear")
+        lengths.plot(h.numbers(fragments, "t") * MICROSECONDS, length * MILLIMETRES, linewidth=width, label=label)
+    counts.set_ylabel("cracks")
+    lengths.set_ylabel("crack length (mm)")
+    for axes in (counts, lengths):
+        axes.set_xlabel("time (µs)")
+        axes.legend(title="impact speed")
+        axes.grid(alpha=0.3)
+    figure.suptitle("case 4: the same run with its impact speed changed by a few millionths")
+    save(figure, os.path.join(figures, "spread.png"))
+    return md
+
+
 def write_whole(path, text):
     temporary = os.path.join(os.path.dirname(path), "." + os.path.basename(path) + ".partial")
     with open(temporary, "w") as handle:
@@ -685,6 +759,8 @@ def draw_study(args, h, save):
         md += damping_section(h, runs["damping"], figures, save)
     if "node-model" in runs:
         md += node_model_section(h, runs["node-model"], figures, save)
+    if "spread" in runs:
+        md += spread_section(h, runs["spread"], figures, save)
     write_whole(os.path.join(args.study_dir, "analysis.md"), md)
 
 
