@@ -119,6 +119,13 @@ double platen_speed(const scene::Scene& s, const fs::path& file) {
   return std::abs(platen->prescribed_velocity[1]);
 }
 
+/// The scene's body named disc (the slotted and flattened discs' rock); CommandFailed if it has none.
+const scene::Body& disc_body(const scene::Scene& s, const fs::path& file) {
+  const scene::Body* disc = s.find_body("disc");
+  if (disc == nullptr) throw CommandFailed(file.string() + ": no body named disc");
+  return *disc;
+}
+
 std::string number(double v) { return fmt::format("{:.6g}", v); }
 
 /// The largest of 1, 2 or 5 × 10^k not above `x`: a step a reader can recognise.
@@ -178,15 +185,14 @@ class VariantBuilder {
   /// (measured: the energy balance off by 2400% at 400 µs).
   Variant with_stiffness(Variant v, double multiple) const {
     const scene::Scene base = load(v.base);
-    const scene::Body* disc = base.find_body("disc");
-    if (disc == nullptr) throw CommandFailed(v.base.string() + ": no body named disc");
+    const scene::Body& disc = disc_body(base, v.base);
     for (const scene::JointSet& joints : base.joint_sets)
       if (joints.normal_stiffness != base.analysis.penalty)
         throw CommandFailed(fmt::format(
             "{}: joint set {} has a normal_stiffness of its own; the penalty family sets analysis.penalty, which "
             "it would not take",
             v.base.string(), joints.name));
-    const double kn = multiple * base.materials[disc->material].young;  // N/m per unit thickness (×1 m)
+    const double kn = multiple * base.materials[disc.material].young;  // N/m per unit thickness (×1 m)
     v.name += fmt::format("-kn{:g}E", multiple);
     v.tables["analysis"]["penalty"] = number(kn);
     return resolving_contact_period(std::move(v));
@@ -248,13 +254,12 @@ class VariantBuilder {
   /// The disc's impact speed × (1 + `change`), in the same direction.
   Variant with_impact_speed_changed(Variant v, double change) const {
     const scene::Scene base = load(v.base);
-    const scene::Body* disc = base.find_body("disc");
-    if (disc == nullptr) throw CommandFailed(v.base.string() + ": no body named disc");
+    const scene::Body& disc = disc_body(base, v.base);
     const double scale = 1.0 + change;
     v.name += fmt::format("-dv{:g}", change);
     // All the digits: the change is in the sixth.
     v.tables["bodies.disc"]["velocity"] =
-        fmt::format("[{:.17g}, {:.17g}]", disc->initial_velocity[0] * scale, disc->initial_velocity[1] * scale);
+        fmt::format("[{:.17g}, {:.17g}]", disc.initial_velocity[0] * scale, disc.initial_velocity[1] * scale);
     return v;
   }
 
