@@ -700,8 +700,7 @@ def spread_section(h, runs, figures, save):
            "|---|--:|--:|--:|--:|---|\n")
     for label, f in MEASURES:
         md += scatter_line(label, [f(r) for r in runs], runs)
-    md += scatter_line("cracks (all)", [(r["cracks"].get("tensile") or 0) + (r["cracks"].get("shear") or 0)
-                                        for r in runs], runs) + "\n"
+    md += scatter_line("cracks (all)", [r["cracks"].get("total") for r in runs], runs) + "\n"
     figure, (counts, lengths) = plt.subplots(1, 2, figsize=(13, 4.5))
     # Runs that agree draw over each other: each narrower than the one before, so all stay visible.
     widths = np.linspace(SPREAD_WIDEST_LINE, SPREAD_NARROWEST_LINE, len(runs))
