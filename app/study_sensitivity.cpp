@@ -1,7 +1,7 @@
 // `ddafrac study sensitivity [--family mesh,penalty,...] [--blocks N] [study options]`: how far the
 // fracture results can be trusted. Runs case 4 and the flattened disc at varied mesh, joint
-// stiffness, time step, loading rate and mass damping, and case 4 again with its impact speed
-// changed by a few millionths (the scatter of one run), each variant a scene written into DIR/scenes/ (a base
+// stiffness, time step, loading rate and mass damping, and both again with their impact or platen
+// speed changed by a few millionths (the scatter of one run), each variant a scene written into DIR/scenes/ (a base
 // scene of scenes/ and the values the variant changes, so any run can be repeated alone), then
 // writes study.md, study.csv and, through the plotting script, the families' figures and
 // analysis.md (convergence orders, indirect tensile strength, verdicts).
@@ -75,11 +75,12 @@ struct NodeModel {
   scene::IntactNodes intact_nodes;
   scene::FractureLoad fracture_load;
 };
-/// Relative changes of case 4's impact speed in the spread family, besides the scene's own: far
-/// below anything a measurement could tell apart or the physics responds to (the v0 series moves
-/// the speed by 14–70%), so that what moves between the runs is how one run's choices fall
-/// (which state a contact inside the open–close band settles in, which joint breaks first in a
-/// step) — the scatter of a single run's crack results.
+/// Relative changes of case 4's impact speed and of the flattened disc's platen speed in the
+/// spread family, besides the scene's own: far below anything a measurement could tell apart or
+/// the physics responds to (the v0 series moves the speed by 14–70%, the rate family the platen's
+/// by factors of 2), so that what moves between the runs is how one run's choices fall (which
+/// state a contact inside the open–close band settles in, which joint breaks first in a step) —
+/// the scatter of a single run's crack results and peak force.
 constexpr double kSpeedPerturbations[] = {1e-6, 2e-6, 4e-6, 8e-6};
 constexpr NodeModel kNodeModels[] = {{"", scene::IntactNodes::Contact, scene::FractureLoad::JointSprings},
                                      {"-stress", scene::IntactNodes::Contact, scene::FractureLoad::BlockStress},
@@ -263,6 +264,17 @@ class VariantBuilder {
     return v;
   }
 
+  /// The top platen's speed × (1 + `change`), over the scene's times: the travel changes by the
+  /// same fraction, far below one output interval's.
+  Variant with_platen_speed_changed(Variant v, double change) const {
+    const scene::Scene base = load(v.base);
+    v.name += fmt::format("-dv{:g}", change);
+    // All the digits: the change is in the sixth.
+    v.tables["bodies." + std::string(kPlaten)]["prescribed_velocity"] =
+        fmt::format("[0.0, {:.17g}]", -platen_speed(base, v.base) * (1.0 + change));
+    return v;
+  }
+
   /// Static mode, the platen moving as far per step as in the scene over the same travel
   /// (kStaticTimeStretch).
   Variant in_static_mode(Variant v) const {
@@ -363,6 +375,9 @@ std::vector<Variant> variants(const SensitivityArguments& args, const fs::path& 
     add(build.at_scale(kImpactCase), "spread");
     for (const double change : kSpeedPerturbations)
       add(build.with_impact_speed_changed(build.at_scale(kImpactCase), change), "spread");
+    add(build.at_scale(kFlattenedDiscs[0]), "spread");
+    for (const double change : kSpeedPerturbations)
+      add(build.with_platen_speed_changed(build.at_scale(kFlattenedDiscs[0]), change), "spread");
   }
   for (const Variant& v : all) build.write(v);
   return all;

@@ -24,6 +24,9 @@ summary.json, scene.resolved.toml, history.csv, gauges.csv and loading.csv, and 
                                 and the peak force against η beside the static run's
     figures/spread.png          case 4's cracks and crack length against time in each run of the
                                 spread family (its impact speed changed by a few millionths)
+    figures/spread_flattened.png
+                                the same for the flattened disc (its platen speed changed alike),
+                                with the platen force against travel
 
 Only runs that completed are analysed; the others are listed as missing. Every PNG and
 analysis.md are written whole (temporary name, then rename).
@@ -685,41 +688,85 @@ def scatter_line(label, values, runs):
             f"{spread * PERCENT:.1f} | {verdict} |\n")
 
 
-def spread_section(h, runs, figures, save):
-    """Case 4 with its impact speed changed by a few millionths: every run's measures, their
-    scatter, and the cracks against time of every run in one figure."""
-    runs = sorted(runs, key=impact_speed)
-    reference = impact_speed(runs[0])
-    change = lambda r: (impact_speed(r) / reference - 1.0) * PPM  # noqa: E731
-    md = ("## Spread: case 4 with its impact speed changed by a few millionths\n\n"
-          f"Impact speed {reference:g} m/s and that × (1 + n·10⁻⁶); what moves is how one run's choices fall "
-          "(which state a contact inside the open–close band settles in, which joint breaks first), not the "
-          "physics.\n\n")
-    md += measure_table(runs, "speed change (10⁻⁶)", change, "{:.2g}") + "\n"
-    md += ("| measure | mean | range | standard deviation | range / mean (%) | verdict |\n"
-           "|---|--:|--:|--:|--:|---|\n")
-    for label, f in MEASURES:
-        md += scatter_line(label, [f(r) for r in runs], runs)
-    md += scatter_line("cracks (all)", [r["cracks"].get("total") for r in runs], runs) + "\n"
-    figure, (counts, lengths) = plt.subplots(1, 2, figsize=(13, 4.5))
-    # Runs that agree draw over each other: each narrower than the one before, so all stay visible.
+def is_brazilian(run):
+    """Whether the run loads a disc between platens (the flattened disc), not by an impact."""
+    return LOADED_BODY in run["scene"].get("bodies", {})
+
+
+def spread_runs_figure(h, runs, change, legend_title, title, path, save):
+    """Cracks and crack length against time in every run of a spread group, each line narrower
+    than the one before (runs that agree draw over each other, and all stay visible); a Brazilian
+    group gets a first panel with the top platen's force against its travel."""
+    brazilian = is_brazilian(runs[0])
+    figure, axes = plt.subplots(1, 3 if brazilian else 2, figsize=(19 if brazilian else 13, 4.5))
+    forces, counts, lengths = axes if brazilian else (None, *axes)
     widths = np.linspace(SPREAD_WIDEST_LINE, SPREAD_NARROWEST_LINE, len(runs))
     for r, width in zip(runs, widths):
         label = f"+{change(r):.0f}·10⁻⁶" if change(r) > 0 else "as specified"
+        if forces is not None:
+            travel, force = platen_curve(h, r, LOADED_BODY)
+            forces.plot(travel * MILLIMETRES, force * KILONEWTONS, linewidth=width, label=label)
         history = h.read_columns(os.path.join(r["dir"], "history.csv"))
         counts.step(h.numbers(history, "t") * MICROSECONDS, h.numbers(history, "cracks_total"), where="post",
                     linewidth=width, label=label)
         fragments = h.read_columns(os.path.join(r["dir"], "fragments.csv"))
         length = h.numbers(fragments, "crack_length_tensile") + h.numbers(fragments, "crack_length_shear")
         lengths.plot(h.numbers(fragments, "t") * MICROSECONDS, length * MILLIMETRES, linewidth=width, label=label)
+    if forces is not None:
+        forces.set_xlabel("platen travel (mm)")
+        forces.set_ylabel("top platen force (kN/m)")
     counts.set_ylabel("cracks")
     lengths.set_ylabel("crack length (mm)")
-    for axes in (counts, lengths):
-        axes.set_xlabel("time (µs)")
-        axes.legend(title="impact speed")
-        axes.grid(alpha=0.3)
-    figure.suptitle("case 4: the same run with its impact speed changed by a few millionths")
-    save(figure, os.path.join(figures, "spread.png"))
+    for panel in (counts, lengths):
+        panel.set_xlabel("time (µs)")
+    for panel in axes:
+        panel.legend(title=legend_title)
+        panel.grid(alpha=0.3)
+    figure.suptitle(title)
+    save(figure, path)
+
+
+def spread_group(h, runs, speed, subject, speed_name, table, first_rows, path, save):
+    """The spread section of one group of runs (`subject` with its `speed_name` changed), sorted by
+    speed(run): their table (table(runs, change)), the scatter of first_rows(runs) (label, values)
+    and of the crack measures, and the figure."""
+    runs = sorted(runs, key=speed)
+    reference = speed(runs[0])
+    change = lambda r: (speed(r) / reference - 1.0) * PPM  # noqa: E731
+    md = (f"## Spread: {subject} with its {speed_name} changed by a few millionths\n\n"
+          f"{speed_name.capitalize()} {reference:g} m/s and that × (1 + n·10⁻⁶); what moves is how one run's choices "
+          "fall (which state a contact inside the open–close band settles in, which joint breaks first), not the "
+          "physics.\n\n")
+    md += table(runs, change) + "\n"
+    md += ("| measure | mean | range | standard deviation | range / mean (%) | verdict |\n"
+           "|---|--:|--:|--:|--:|---|\n")
+    rows = first_rows(runs) + [(label, [f(r) for r in runs]) for label, f in MEASURES]
+    rows.append(("cracks (all)", [r["cracks"].get("total") for r in runs]))
+    for label, values in rows:
+        md += scatter_line(label, values, runs)
+    spread_runs_figure(h, runs, change, speed_name,
+                       f"{subject}: the same run with its {speed_name} changed by a few millionths", path, save)
+    return md + "\n"
+
+
+def spread_section(h, runs, figures, save):
+    """Case 4 with its impact speed and the flattened disc with its platen speed changed by a few
+    millionths: every run's measures, their scatter, and every run's cracks against time."""
+    md = ""
+    impact = [r for r in runs if not is_brazilian(r)]
+    if impact:
+        md += spread_group(h, impact, impact_speed, "case 4", "impact speed",
+                           lambda group, change: measure_table(group, "speed change (10⁻⁶)", change, "{:.2g}"),
+                           lambda group: [], os.path.join(figures, "spread.png"), save)
+    brazilian = [r for r in runs if is_brazilian(r)]
+    if brazilian:
+        def peaks(group):
+            found = [peak_force(r) for r in group]
+            return [("peak force (kN/m)", [scaled(p[0], KILONEWTONS) if p else None for p in found]),
+                    ("platen travel at peak (mm)", [scaled(p[2], MILLIMETRES) if p else None for p in found])]
+        md += spread_group(h, brazilian, platen_speed, "the flattened disc", "platen speed",
+                           lambda group, change: brazilian_table(h, group, "speed change (10⁻⁶)", change, "{:.2g}"),
+                           peaks, os.path.join(figures, "spread_flattened.png"), save)
     return md
 
 
